@@ -1,0 +1,116 @@
+// cloudlut_geometry.glsl — the one definition of the LUT parameterization.
+//
+// Compiled as GLSL by the renderer and as C++ (through GLM, see src/core/Glsl.h) by the baker,
+// the CLI and the tests, so that the tables and their users cannot disagree.
+// Written in the subset both languages accept: no in/out/inout, float literals with an `f`
+// suffix, every function prefixed by CLOUDLUT_FN (`inline` in C++, nothing in GLSL).
+//
+// Conventions (lut_formats/FORMAT.md, docs): particle space, the particle is the unit sphere.
+//   S  entry point of the view ray, |S| = 1
+//   v  unit view direction, pointing into the sphere (dot(v, S) < 0)
+//   l  unit vector toward the sun
+// The tangent frame at S (seed §4.1, fig. 3): z points to the centre (z = -S); x and y are the
+// derivatives of S with respect to its zenith and azimuth angles. Unlike a frame built from a
+// fixed "up" vector, this frame is finite at the poles (θS = 0, π), where it still depends
+// smoothly on φS; the tables store the poles once per φS and the values agree there.
+
+#ifndef CLOUDLUT_FN
+#define CLOUDLUT_FN
+#endif
+
+const float CLOUDLUT_PI = 3.14159265358979f;
+
+// Texture coordinate of the axis fraction x ∈ [0, 1] in a table of n nodes that include both
+// ends of the axis: node i sits at x = i / (n - 1) and at the centre of texel i.
+CLOUDLUT_FN float lutTexCoord(float x, float n) {
+  return (0.5f + clamp(x, 0.0f, 1.0f) * (n - 1.0f)) / n;
+}
+
+// Azimuth φ ∈ [0, 2π) and zenith θ ∈ [0, π] of a unit vector, in radians.
+CLOUDLUT_FN vec2 sphericalAngles(vec3 p) {
+  float phi = atan(p.y, p.x);
+  if (phi < 0.0f) phi += 2.0f * CLOUDLUT_PI;
+  // atan rather than acos: well conditioned near the poles as well
+  return vec2(phi, atan(length(vec2(p.x, p.y)), p.z));
+}
+
+// Point of the unit sphere at azimuth φ and zenith θ.
+CLOUDLUT_FN vec3 sphericalPoint(float phi, float theta) {
+  return vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
+}
+
+// Tangent x axis at the point (φ, θ): dS/dθ, unit length everywhere including the poles.
+CLOUDLUT_FN vec3 tangentX(float phi, float theta) {
+  return vec3(cos(theta) * cos(phi), cos(theta) * sin(phi), -sin(theta));
+}
+
+// Tangent y axis at the point (φ, θ): dS/dφ divided by sin θ, unit length everywhere.
+CLOUDLUT_FN vec3 tangentY(float phi) {
+  return vec3(-sin(phi), cos(phi), 0.0f);
+}
+
+// Direction of zenith θv (from the inward normal -S) and azimuth φv in the frame (x, y, -S).
+CLOUDLUT_FN vec3 frameDirection(vec3 x, vec3 y, vec3 S, float phiV, float thetaV) {
+  return sin(thetaV) * (cos(phiV) * x + sin(phiV) * y) - cos(thetaV) * S;
+}
+
+// Angles (φv, θv) of direction v in the frame (x, y, -S); θv ∈ [0, π], φv ∈ [0, 2π).
+CLOUDLUT_FN vec2 frameAngles(vec3 x, vec3 y, vec3 S, vec3 v) {
+  float vx = dot(v, x);
+  float vy = dot(v, y);
+  float phiV = atan(vy, vx);
+  if (phiV < 0.0f) phiV += 2.0f * CLOUDLUT_PI;
+  return vec2(phiV, atan(length(vec2(vx, vy)), -dot(v, S)));
+}
+
+// Length of the chord of the unit sphere from S along v (unit-sphere units): 2 cos θv.
+CLOUDLUT_FN float chordLength(vec3 S, vec3 v) {
+  return max(0.0f, -2.0f * dot(S, v));
+}
+
+// Optical-depth table angles (φS, θS, φv, θv), seed §4.1: θv ∈ [0, π/2].
+CLOUDLUT_FN vec4 opticalDepthAngles(vec3 S, vec3 v) {
+  vec3 s = normalize(S);
+  vec2 a = sphericalAngles(s);
+  vec2 b = frameAngles(tangentX(a.x, a.y), tangentY(a.x), s, v);
+  return vec4(a.x, a.y, b.x, min(b.y, 0.5f * CLOUDLUT_PI));
+}
+
+// Axis fractions in [0, 1] of the optical-depth table: (φS/2π, θS/π, φv/2π, θv/(π/2)).
+CLOUDLUT_FN vec4 opticalDepthAxes(vec3 S, vec3 v) {
+  vec4 a = opticalDepthAngles(S, v);
+  return vec4(a.x / (2.0f * CLOUDLUT_PI), a.y / CLOUDLUT_PI, a.z / (2.0f * CLOUDLUT_PI),
+              a.w / (0.5f * CLOUDLUT_PI));
+}
+
+// Light frame at S: the x axis of the optical-depth frame when l is the pole. y = l × S / |l × S|;
+// at the poles (S = ±l) any axis perpendicular to l serves, since the light field is symmetric
+// about l and the tables hold the same value for every φv there.
+CLOUDLUT_FN vec3 lightFrameY(vec3 S, vec3 l) {
+  vec3 c = cross(l, S);
+  float len = length(c);
+  if (len > 1e-6f) return c / len;
+  vec3 a = abs(l.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
+  return normalize(cross(l, a));
+}
+
+// Scattering table angles (θS, φv, θv), seed §4.2: θS is the angle between S and l.
+CLOUDLUT_FN vec3 scatteringAngles(vec3 S, vec3 v, vec3 l) {
+  vec3 s = normalize(S);
+  vec3 y = lightFrameY(s, l);
+  vec3 x = cross(y, s);
+  vec2 b = frameAngles(x, y, s, v);
+  return vec3(atan(length(cross(s, l)), dot(s, l)), b.x, b.y);
+}
+
+// Density-scale axis: s = log2 ρ mapped linearly from [sMin, sMax] to [0, 1].
+CLOUDLUT_FN float densityAxis(float rho, float sMin, float sMax) {
+  return clamp((log2(max(rho, 1e-30f)) - sMin) / max(sMax - sMin, 1e-6f), 0.0f, 1.0f);
+}
+
+// Axis fractions of the scattering tables (θS/π, φv/2π, θv/(π/2), density axis).
+CLOUDLUT_FN vec4 scatteringAxes(vec3 S, vec3 v, vec3 l, float rho, float sMin, float sMax) {
+  vec3 a = scatteringAngles(S, v, l);
+  return vec4(a.x / CLOUDLUT_PI, a.y / (2.0f * CLOUDLUT_PI),
+              min(a.z, 0.5f * CLOUDLUT_PI) / (0.5f * CLOUDLUT_PI), densityAxis(rho, sMin, sMax));
+}

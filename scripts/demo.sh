@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The main job on embedded defaults: install what is missing, build, bake the default tables
+# into out/luts and describe them.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+bash scripts/build.sh
+./build/cloudlut bake --out out/luts
+./build/cloudlut info out/luts

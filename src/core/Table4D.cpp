@@ -1,0 +1,79 @@
+#include "core/Table4D.h"
+#include "core/Errors.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace cloudlut {
+
+Table4D::Table4D(std::string name, std::array<Axis, 4> axes, std::vector<Channel> channels)
+    : name_(std::move(name)), axes_(std::move(axes)), channels_(std::move(channels)) {
+  for (const Axis& a : axes_)
+    if (a.size < 1) throw std::invalid_argument("table axis '" + a.name + "' has no nodes");
+  if (channels_.empty()) throw std::invalid_argument("table '" + name_ + "' has no channels");
+  data_.assign(nodeCount() * channels_.size(), 0.0f);
+}
+
+std::array<int, 4> Table4D::dims() const {
+  return {axes_[0].size, axes_[1].size, axes_[2].size, axes_[3].size};
+}
+
+std::size_t Table4D::nodeCount() const {
+  std::size_t n = 1;
+  for (const Axis& a : axes_) n *= static_cast<std::size_t>(a.size);
+  return n;
+}
+
+void Table4D::sample(const std::array<float, 4>& x, float* out) const {
+  int i[4];
+  float f[4];
+  for (int k = 0; k < 4; ++k) {
+    const int n = axes_[k].size;
+    const float p = std::clamp(x[k], 0.0f, 1.0f) * static_cast<float>(n - 1);
+    i[k] = std::min(static_cast<int>(p), std::max(n - 2, 0));
+    f[k] = n > 1 ? p - static_cast<float>(i[k]) : 0.0f;
+  }
+  const int C = channelCount();
+  for (int c = 0; c < C; ++c) out[c] = 0.0f;
+  for (int corner = 0; corner < 16; ++corner) {
+    float w = 1.0f;
+    int j[4];
+    for (int k = 0; k < 4; ++k) {
+      const bool hi = (corner >> k) & 1;
+      if (hi && axes_[k].size < 2) { w = 0.0f; break; }
+      j[k] = i[k] + (hi ? 1 : 0);
+      w *= hi ? f[k] : 1.0f - f[k];
+    }
+    if (w == 0.0f) continue;
+    const std::size_t node = index(j[0], j[1], j[2], j[3]);
+    for (int c = 0; c < C; ++c) out[c] += w * at(node, c);
+  }
+}
+
+std::uint64_t Table4D::bytesFor(const std::array<int, 4>& dims, int channels) {
+  long double n = channels;
+  for (int d : dims) n *= d;
+  n *= sizeof(float);
+  return n > 1.8e19L ? UINT64_MAX : static_cast<std::uint64_t>(n);
+}
+
+void checkTableFitsInMemory(const std::array<int, 4>& dims, int channels, int tableCount) {
+  for (int d : dims)
+    if (d < 2) throw UsageError("every table dimension must be at least 2");
+  const long double need = static_cast<long double>(Table4D::bytesFor(dims, channels)) * tableCount;
+  const long double pages = static_cast<long double>(sysconf(_SC_PHYS_PAGES));
+  const long double pageSize = static_cast<long double>(sysconf(_SC_PAGESIZE));
+  const long double budget = pages > 0 && pageSize > 0 ? 0.75L * pages * pageSize : 4.0e9L;
+  if (need > budget) {
+    throw UsageError(
+        "tables of " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+        std::to_string(dims[2]) + "x" + std::to_string(dims[3]) + " would need " +
+        std::to_string(static_cast<long long>(need / 1048576.0L)) + " MiB, more than the " +
+        std::to_string(static_cast<long long>(budget / 1048576.0L)) + " MiB this machine can spare");
+  }
+}
+
+}  // namespace cloudlut

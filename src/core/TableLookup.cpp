@@ -1,0 +1,40 @@
+#include "core/TableLookup.h"
+
+#include <cmath>
+
+#include "core/Defaults.h"
+#include "core/Glsl.h"
+
+namespace cloudlut {
+
+float unitOpticalRadius(const Table4D& table) {
+  const auto& p = table.parameters();
+  const double beta = p.value("extinction_per_m", defaults::kExtinctionPerMetre);
+  const double radius = p.value("radius_m", defaults::kParticleRadiusMetres);
+  return static_cast<float>(beta * radius);
+}
+
+OpticalDepthSample lookupOpticalDepth(const Table4D& table, const glm::vec3& S,
+                                      const glm::vec3& v, float rho) {
+  const glm::vec4 x = glsl::opticalDepthAxes(S, v);
+  float values[4] = {0, 0, 0, 0};
+  table.sample({x.x, x.y, x.z, x.w}, values);
+  OpticalDepthSample s{};
+  s.meanDensity = values[0];
+  s.firstMatter = table.channelCount() > 1 ? values[1] : 0.0f;
+  s.chordLength = glsl::chordLength(glm::normalize(S), v);
+  s.opticalDepth = unitOpticalRadius(table) * rho * s.chordLength * s.meanDensity;
+  s.transmittance = std::exp(-s.opticalDepth);
+  return s;
+}
+
+float lookupScattering(const Table4D& table, const glm::vec3& S, const glm::vec3& v,
+                       const glm::vec3& l, float rho) {
+  const Axis& d = table.axes()[3];
+  const glm::vec4 x = glsl::scatteringAxes(S, v, l, rho, static_cast<float>(d.min), static_cast<float>(d.max));
+  float value = 0.0f;
+  table.sample({x.x, x.y, x.z, x.w}, &value);
+  return value;
+}
+
+}  // namespace cloudlut

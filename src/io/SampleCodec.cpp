@@ -1,0 +1,63 @@
+#include "io/SampleCodec.h"
+
+#include <Imath/half.h>
+
+#include <cmath>
+
+#include "io/LittleEndian.h"
+
+namespace cloudlut::io {
+
+std::size_t sampleBytes(SampleType type) {
+  switch (type) {
+    case SampleType::U8: return 1;
+    case SampleType::Half: return 2;
+    case SampleType::Float: return 4;
+  }
+  return 4;
+}
+
+std::uint8_t encodeU8(float v) {
+  if (!(v > 0.0f)) return 0;  // negative, zero and NaN
+  if (v >= 1.0f) return 255;
+  return static_cast<std::uint8_t>(std::lround(v * 255.0f));
+}
+
+std::string encodeSamples(const float* values, std::size_t count, SampleType type) {
+  std::string out;
+  out.reserve(count * sampleBytes(type));
+  for (std::size_t k = 0; k < count; ++k) {
+    switch (type) {
+      case SampleType::U8: out.push_back(static_cast<char>(encodeU8(values[k]))); break;
+      case SampleType::Half: putU16(out, Imath::half(values[k]).bits()); break;
+      case SampleType::Float: putF32(out, values[k]); break;
+    }
+  }
+  return out;
+}
+
+void decodeSamples(std::string_view bytes, SampleType type, float* out) {
+  const std::size_t size = sampleBytes(type);
+  const std::size_t count = bytes.size() / size;
+  const char* p = bytes.data();
+  for (std::size_t k = 0; k < count; ++k, p += size) {
+    switch (type) {
+      case SampleType::U8:
+        out[k] = static_cast<float>(static_cast<unsigned char>(*p)) / 255.0f;
+        break;
+      case SampleType::Half: {
+        Imath::half h;
+        h.setBits(getU16(p));
+        out[k] = static_cast<float>(h);
+        break;
+      }
+      case SampleType::Float: out[k] = getF32(p); break;
+    }
+  }
+}
+
+std::string encodePayload(const Table4D& table, SampleType type) {
+  return encodeSamples(table.data().data(), table.data().size(), type);
+}
+
+}  // namespace cloudlut::io

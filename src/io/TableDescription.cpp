@@ -1,0 +1,152 @@
+#include "io/TableDescription.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <stdexcept>
+
+#include "core/Errors.h"
+#include "io/Fnv1a.h"
+#include "io/SampleCodec.h"
+
+namespace cloudlut::io {
+
+std::optional<SampleType> parseSampleType(std::string_view name) {
+  if (name == "u8") return SampleType::U8;
+  if (name == "half") return SampleType::Half;
+  if (name == "float") return SampleType::Float;
+  return std::nullopt;
+}
+
+std::string toString(SampleType type) {
+  switch (type) {
+    case SampleType::U8: return "u8";
+    case SampleType::Half: return "half";
+    case SampleType::Float: return "float";
+  }
+  return "float";
+}
+
+std::uint64_t payloadChecksum(const Table4D& table, SampleType type) {
+  return fnv1a64(encodePayload(table, type));
+}
+
+std::string checksumHex(std::uint64_t checksum) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(checksum));
+  return text;
+}
+
+bool parseChecksumHex(const std::string& text, std::uint64_t& checksum) {
+  if (text.size() != 16) return false;
+  std::uint64_t v = 0;
+  for (const char c : text) {
+    int digit = -1;
+    if (c >= '0' && c <= '9') digit = c - '0';
+    else if (c >= 'a' && c <= 'f') digit = c - 'a' + 10;
+    else if (c >= 'A' && c <= 'F') digit = c - 'A' + 10;
+    if (digit < 0) return false;
+    v = (v << 4) | static_cast<std::uint64_t>(digit);
+  }
+  checksum = v;
+  return true;
+}
+
+nlohmann::json describeTableWith(const Table4D& table, SampleType type, std::uint64_t payloadBytes,
+                                 std::uint64_t checksum) {
+  using nlohmann::json;
+  const auto d = table.dims();
+  json axes = json::array();
+  for (const Axis& a : table.axes())
+    axes.push_back({{"name", a.name}, {"unit", a.unit}, {"min", a.min}, {"max", a.max},
+                    {"size", a.size}, {"periodic", a.periodic}});
+  json channels = json::array();
+  for (const Channel& c : table.channels())
+    channels.push_back({{"name", c.name}, {"meaning", c.meaning}});
+  return {{"name", table.name()},
+          {"dims", {d[0], d[1], d[2], d[3]}},
+          {"texture_size", {d[0], d[1], d[2] * d[3]}},
+          {"axes", axes},
+          {"channels", channels},
+          {"parameters", table.parameters()},
+          {"sample_type", toString(type)},
+          {"payload_bytes", payloadBytes},
+          {"payload_fnv1a64", checksumHex(checksum)}};
+}
+
+nlohmann::json describeTable(const Table4D& table, SampleType type) {
+  const std::string payload = encodePayload(table, type);
+  return describeTableWith(table, type, payload.size(), fnv1a64(payload));
+}
+
+void checkClaimedSize(const std::array<std::uint32_t, 4>& dims, std::uint32_t channels,
+                      const std::filesystem::path& path) {
+  std::array<int, 4> asInt{};
+  for (int k = 0; k < 4; ++k) {
+    if (dims[k] < 1 || dims[k] > 0x7fffffffu)
+      throw FileError(path.string(), "corrupt header (axis " + std::to_string(k) + " has " +
+                                         std::to_string(dims[k]) + " nodes)");
+    // core's check wants every axis to have 2 nodes or more; a 1-node axis costs no more.
+    asInt[k] = std::max(2, static_cast<int>(dims[k]));
+  }
+  try {
+    checkTableFitsInMemory(asInt, static_cast<int>(channels));
+  } catch (const std::exception& e) {
+    throw FileError(path.string(), std::string("claims a table too large to load: ") + e.what());
+  }
+}
+
+namespace {
+
+// The value of key `key` of `object` if it has type `T`, else a FileError naming the key.
+template <typename T>
+T required(const nlohmann::json& object, const char* key, const std::filesystem::path& path) {
+  if (!object.is_object() || !object.contains(key))
+    throw FileError(path.string(), std::string("table description lacks \"") + key + "\"");
+  try {
+    return object.at(key).get<T>();
+  } catch (const nlohmann::json::exception&) {
+    throw FileError(path.string(), std::string("table description has a bad \"") + key + "\"");
+  }
+}
+
+}  // namespace
+
+Table4D tableFromDescription(const nlohmann::json& description, const std::filesystem::path& path) {
+  using nlohmann::json;
+  const auto axesJson = required<json>(description, "axes", path);
+  const auto channelsJson = required<json>(description, "channels", path);
+  if (!axesJson.is_array() || axesJson.size() != 4)
+    throw FileError(path.string(), "table description must have 4 axes");
+  if (!channelsJson.is_array() || channelsJson.empty() || channelsJson.size() > 4)
+    throw FileError(path.string(), "table description must have 1 to 4 channels");
+  std::array<Axis, 4> axes;
+  std::array<std::uint32_t, 4> dims{};
+  for (int k = 0; k < 4; ++k) {
+    const json& a = axesJson[static_cast<std::size_t>(k)];
+    axes[k].name = required<std::string>(a, "name", path);
+    axes[k].unit = required<std::string>(a, "unit", path);
+    axes[k].min = required<double>(a, "min", path);
+    axes[k].max = required<double>(a, "max", path);
+    axes[k].periodic = required<bool>(a, "periodic", path);
+    const auto size = required<std::int64_t>(a, "size", path);
+    if (size < 1 || size > 0x7fffffff)
+      throw FileError(path.string(), "axis " + std::to_string(k) + " has " + std::to_string(size) +
+                                         " nodes");
+    axes[k].size = static_cast<int>(size);
+    dims[k] = static_cast<std::uint32_t>(size);
+  }
+  std::vector<Channel> channels;
+  for (const json& c : channelsJson)
+    channels.push_back({required<std::string>(c, "name", path),
+                        c.is_object() && c.contains("meaning") && c["meaning"].is_string()
+                            ? c["meaning"].get<std::string>()
+                            : std::string()});
+  checkClaimedSize(dims, static_cast<std::uint32_t>(channels.size()), path);
+  Table4D table(required<std::string>(description, "name", path), axes, std::move(channels));
+  if (description.contains("parameters") && description["parameters"].is_object())
+    table.parameters() = description["parameters"];
+  return table;
+}
+
+}  // namespace cloudlut::io

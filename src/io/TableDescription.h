@@ -1,0 +1,32 @@
+#pragma once
+// The JSON self-description of a table (describeTable) and the way back to an empty Table4D.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "io/LutIo.h"
+
+namespace cloudlut::io {
+
+// describeTable with the payload size and checksum already known (avoids encoding twice).
+nlohmann::json describeTableWith(const Table4D& table, SampleType type, std::uint64_t payloadBytes,
+                                 std::uint64_t checksum);
+
+// The checksum as written in JSON: 16 lowercase hexadecimal digits.
+std::string checksumHex(std::uint64_t checksum);
+
+// Parses 16 hexadecimal digits; false if `text` is not exactly that.
+bool parseChecksumHex(const std::string& text, std::uint64_t& checksum);
+
+// A table with the name, axes, channels and parameters of `description` and every value 0.
+// Throws FileError(path, ...) if the description is incomplete or inconsistent, or if the
+// table it claims would not fit in memory (checked before allocating).
+Table4D tableFromDescription(const nlohmann::json& description, const std::filesystem::path& path);
+
+// Throws FileError(path, ...) if a table of these dims and channels would not fit in memory.
+void checkClaimedSize(const std::array<std::uint32_t, 4>& dims, std::uint32_t channels,
+                      const std::filesystem::path& path);
+
+}  // namespace cloudlut::io

@@ -1,0 +1,288 @@
+#include "reference/SphereMonteCarlo.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
+
+#include "core/Glsl.h"
+
+namespace cloudlut::reference {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::uint64_t mix64(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+double phaseValue(const McPhase& p, double mu) {
+  return static_cast<double>(glsl::phaseFunction(p.kind, static_cast<float>(mu), p.param));
+}
+
+double sampleHg(double g, double u) {
+  if (std::abs(g) < 1e-5) return 1.0 - 2.0 * u;
+  const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
+  return std::clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
+}
+
+// Distance from x (|x| ≤ 1) along the unit direction d to the unit sphere.
+double distanceToBoundary(const glm::dvec3& x, const glm::dvec3& d) {
+  const double b = glm::dot(x, d);
+  const double c = glm::dot(x, x) - 1.0;
+  const double disc = std::max(b * b - c, 0.0);
+  return std::max(-b + std::sqrt(disc), 0.0);
+}
+
+// A unit vector at angle acos(mu) from d, azimuth 2π·u about it.
+glm::dvec3 rotateAbout(const glm::dvec3& d, double mu, double u) {
+  const glm::dvec3 a = std::abs(d.x) < 0.7 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 t = glm::normalize(glm::cross(d, a));
+  const glm::dvec3 b = glm::cross(d, t);
+  const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+  const double phi = 2.0 * kPi * u;
+  return glm::normalize(mu * d + s * (std::cos(phi) * t + std::sin(phi) * b));
+}
+
+struct PathSums {
+  double s[3] = {0, 0, 0};   // single, multipleN, multipleAll
+  double s2[3] = {0, 0, 0};  // sums of squares
+  double vertices = 0;
+};
+
+// One backward path from S along v; adds its per-order tallies to `sums`.
+void tracePath(const SphereMcQuery& q, const glm::dvec3& S, const glm::dvec3& v,
+               const glm::dvec3& l, const SphereMcSettings& st, McRng& rng, PathSums& sums) {
+  const double sigma = q.sigma;
+  glm::dvec3 x = S, d = v;
+  double w = 1.0;
+  double tally[3] = {0, 0, 0};
+  long long vertices = 0;
+  for (int k = 1; k < 10000000; ++k) {
+    const double chord = k == 1 ? std::max(-2.0 * glm::dot(S, v), 0.0) : distanceToBoundary(x, d);
+    const double pInt = -std::expm1(-sigma * chord);
+    if (!(pInt > 0.0)) break;
+    w *= pInt;
+    const double t = std::min(-std::log1p(-rng.next() * pInt) / sigma, chord);
+    x += t * d;
+    ++vertices;
+    const double r2 = glm::dot(x, x);
+    if (r2 > 1.0) x /= std::sqrt(r2);
+    // Next-event estimation: sunlight scattered for the first time here, toward -d.
+    const double dSun = distanceToBoundary(x, l);
+    const double c = w * phaseValue(st.first, glm::dot(l, d)) * std::exp(-sigma * dSun);
+    if (k == 1) tally[0] += c;
+    else {
+      if (k <= st.splitOrder) tally[1] += c;
+      tally[2] += c;
+    }
+    // Russian roulette.
+    if (w < st.rouletteWeight) {
+      const double survive = w / st.rouletteWeight;
+      if (rng.next() >= survive) break;
+      w = st.rouletteWeight;
+    }
+    // Continue backward: the light arriving here came from direction d' with cos(d, d') = mu.
+    const double mu = samplePhaseCosine(st.later, rng);
+    d = rotateAbout(d, mu, rng.next());
+  }
+  for (int i = 0; i < 3; ++i) {
+    sums.s[i] += tally[i];
+    sums.s2[i] += tally[i] * tally[i];
+  }
+  sums.vertices += static_cast<double>(vertices);
+}
+
+}  // namespace
+
+McRng::McRng(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
+  state_ = mix64(a + 0x9e3779b97f4a7c15ULL);
+  state_ = mix64(state_ ^ (b * 0xd1b54a32d192ed03ULL + 0x632be59bd9b4e019ULL));
+  state_ = mix64(state_ ^ (c * 0xaef17502108ef2d9ULL + 0x1bd11bdaa9fc1a22ULL));
+}
+
+std::uint64_t McRng::nextBits() {
+  state_ += 0x9e3779b97f4a7c15ULL;
+  return mix64(state_);
+}
+
+double samplePhaseCosine(const McPhase& phase, McRng& rng) {
+  switch (phase.kind) {
+    case 1: return sampleHg(phase.param, rng.next());
+    case 2:
+      // Cornette–Shanks = HG · 3(1 + mu²)/(2(2 + g²)): accept an HG sample with (1 + mu²)/2.
+      for (;;) {
+        const double mu = sampleHg(phase.param, rng.next());
+        if (2.0 * rng.next() < 1.0 + mu * mu) return mu;
+      }
+    case 3: {
+      const glm::vec4 p = glsl::jendersieDeonParameters(phase.param);
+      if (rng.next() >= static_cast<double>(p.w)) return sampleHg(static_cast<double>(p.x), rng.next());
+      // Draine lobe = HG(g_D) · (1 + α mu²) / norm: accept with (1 + α mu²) / (1 + α).
+      const double alpha = static_cast<double>(p.z);
+      for (;;) {
+        const double mu = sampleHg(static_cast<double>(p.y), rng.next());
+        if (rng.next() * (1.0 + alpha) < 1.0 + alpha * mu * mu) return mu;
+      }
+    }
+    default: return 1.0 - 2.0 * rng.next();
+  }
+}
+
+double unscatteredShare(double sigma) {
+  if (sigma < 1e-4) return 1.0 - 4.0 * sigma / 3.0;  // series: 1 − (4/3)σ + σ² …
+  return (1.0 - std::exp(-2.0 * sigma) * (1.0 + 2.0 * sigma)) / (2.0 * sigma * sigma);
+}
+
+std::vector<SphereMcEstimate> estimateSphereRadiance(const std::vector<SphereMcQuery>& queries,
+                                                     const SphereMcSettings& settings,
+                                                     const ProgressFn& progress) {
+  if (settings.paths < 2) throw std::invalid_argument("at least 2 paths per query are needed");
+  const long long blocks = (settings.paths + kPathsPerBlock - 1) / kPathsPerBlock;
+  const std::size_t rows = queries.size();
+  const std::size_t items = rows * static_cast<std::size_t>(blocks);
+  std::vector<PathSums> partial(items);
+  std::atomic<std::size_t> done{0};
+  tbb::parallel_for(std::size_t(0), items, [&](std::size_t item) {
+    const std::size_t row = item / static_cast<std::size_t>(blocks);
+    const long long block = static_cast<long long>(item % static_cast<std::size_t>(blocks));
+    const SphereMcQuery& q = queries[row];
+    const glm::dvec3 S = glm::normalize(q.S), v = glm::normalize(q.v), l = glm::normalize(q.l);
+    McRng rng(settings.seed, row, static_cast<std::uint64_t>(block));
+    const long long first = block * kPathsPerBlock;
+    const long long count = std::min(kPathsPerBlock, settings.paths - first);
+    PathSums sums;
+    if (glm::dot(S, v) < 0.0 && q.sigma > 0.0)
+      for (long long i = 0; i < count; ++i) tracePath(q, S, v, l, settings, rng, sums);
+    partial[item] = sums;
+    const std::size_t n = ++done;
+    if (progress && (n % 16 == 0 || n == items))
+      reportProgress(progress, "reference", static_cast<double>(n) / static_cast<double>(items));
+  });
+  std::vector<SphereMcEstimate> out(rows);
+  const double N = static_cast<double>(settings.paths);
+  for (std::size_t r = 0; r < rows; ++r) {
+    PathSums total;
+    for (long long b = 0; b < blocks; ++b) {
+      const PathSums& p = partial[r * static_cast<std::size_t>(blocks) + static_cast<std::size_t>(b)];
+      for (int i = 0; i < 3; ++i) {
+        total.s[i] += p.s[i];
+        total.s2[i] += p.s2[i];
+      }
+      total.vertices += p.vertices;
+    }
+    double mean[3], se[3];
+    for (int i = 0; i < 3; ++i) {
+      mean[i] = total.s[i] / N;
+      const double var = std::max(0.0, (total.s2[i] / N - mean[i] * mean[i]) * N / (N - 1.0));
+      se[i] = std::sqrt(var / N);
+    }
+    out[r] = {mean[0], se[0], mean[1], se[1], mean[2], se[2], total.vertices / N};
+  }
+  return out;
+}
+
+PhotonShares photonTraceSphere(double sigma, const McPhase& first, const McPhase& later,
+                               long long photons, std::uint64_t seed, int maxOrder) {
+  if (photons < 1 || maxOrder < 1) throw std::invalid_argument("photonTraceSphere: bad counts");
+  const glm::dvec3 l(0, 0, 1);
+  const long long blocks = (photons + kPathsPerBlock - 1) / kPathsPerBlock;
+  struct Block {
+    std::vector<double> byOrder;
+    double beyond = 0, unscattered = 0;
+  };
+  std::vector<Block> partial(static_cast<std::size_t>(blocks));
+  tbb::parallel_for(0LL, blocks, [&](long long b) {
+    Block blk;
+    blk.byOrder.assign(static_cast<std::size_t>(maxOrder) + 1, 0.0);
+    McRng rng(seed, 0xf0f0f0f0ULL, static_cast<std::uint64_t>(b));
+    const long long count = std::min(kPathsPerBlock, photons - b * kPathsPerBlock);
+    for (long long i = 0; i < count; ++i) {
+      // Uniform point on the unit disk facing the sun, entering along -l.
+      const double rr = std::sqrt(rng.next()), ph = 2.0 * kPi * rng.next();
+      const double px = rr * std::cos(ph), py = rr * std::sin(ph);
+      const double h = std::sqrt(std::max(0.0, 1.0 - rr * rr));
+      glm::dvec3 x(px, py, h), d = -l;
+      const double chord = 2.0 * h;
+      const double pInt = -std::expm1(-sigma * chord);
+      blk.unscattered += 1.0 - pInt;
+      const double w = pInt;  // forced first collision
+      x += (std::min(-std::log1p(-rng.next() * pInt) / sigma, chord)) * d;
+      d = rotateAbout(d, samplePhaseCosine(first, rng), rng.next());
+      int k = 1;
+      for (;;) {
+        const double dist = distanceToBoundary(x, d);
+        const double t = -std::log(1.0 - rng.next()) / sigma;
+        if (t >= dist) break;
+        x += t * d;
+        ++k;
+        d = rotateAbout(d, samplePhaseCosine(later, rng), rng.next());
+        if (k > 50000000) break;
+      }
+      if (k <= maxOrder) blk.byOrder[static_cast<std::size_t>(k)] += w;
+      else blk.beyond += w;
+    }
+    partial[static_cast<std::size_t>(b)] = std::move(blk);
+  });
+  PhotonShares out;
+  out.byOrder.assign(static_cast<std::size_t>(maxOrder) + 1, 0.0);
+  for (const Block& b : partial) {
+    out.unscattered += b.unscattered;
+    out.beyond += b.beyond;
+    for (std::size_t k = 0; k < b.byOrder.size(); ++k) out.byOrder[k] += b.byOrder[k];
+  }
+  const double n = static_cast<double>(photons);
+  out.unscattered /= n;
+  out.beyond /= n;
+  out.total = out.unscattered + out.beyond;
+  for (double& s : out.byOrder) {
+    s /= n;
+    out.total += s;
+  }
+  out.standardError = 0.5 / std::sqrt(n);
+  return out;
+}
+
+BackwardShares integrateBackwardShares(double sigma, const SphereMcSettings& settings,
+                                       long long samples) {
+  // Each sample: S uniform on the sphere, v cosine-weighted about -S, l = +z, one path.
+  const long long blocks = (samples + kPathsPerBlock - 1) / kPathsPerBlock;
+  std::vector<PathSums> partial(static_cast<std::size_t>(blocks));
+  const glm::dvec3 l(0, 0, 1);
+  tbb::parallel_for(0LL, blocks, [&](long long b) {
+    McRng rng(settings.seed, 0xbacdULL, static_cast<std::uint64_t>(b));
+    PathSums sums;
+    const long long count = std::min(kPathsPerBlock, samples - b * kPathsPerBlock);
+    for (long long i = 0; i < count; ++i) {
+      const double z = 1.0 - 2.0 * rng.next(), ph = 2.0 * kPi * rng.next();
+      const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
+      const glm::dvec3 S(s * std::cos(ph), s * std::sin(ph), z);
+      const double cosT = std::sqrt(std::max(rng.next(), 1e-300));  // cosine-weighted
+      const glm::dvec3 v = rotateAbout(-S, cosT, rng.next());
+      SphereMcQuery q{S, v, l, sigma};
+      tracePath(q, S, v, l, settings, rng, sums);
+    }
+    partial[static_cast<std::size_t>(b)] = sums;
+  });
+  PathSums total;
+  for (const PathSums& p : partial)
+    for (int i = 0; i < 3; ++i) {
+      total.s[i] += p.s[i];
+      total.s2[i] += p.s2[i];
+    }
+  const double N = static_cast<double>(samples), scale = 4.0 * kPi;
+  double mean[3], se[3];
+  for (int i = 0; i < 3; ++i) {
+    mean[i] = total.s[i] / N;
+    se[i] = std::sqrt(std::max(0.0, total.s2[i] / N - mean[i] * mean[i]) / N);
+  }
+  return {scale * mean[0], scale * se[0], scale * mean[1], scale * se[1], scale * mean[2], scale * se[2]};
+}
+
+}  // namespace cloudlut::reference

@@ -1,0 +1,145 @@
+// The shared parameterization (lut_formats/glsl/cloudlut_geometry.glsl) through GLM:
+// geometry → LUT angles → geometry round trips, including the poles and grazing rays.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "core/Glsl.h"
+
+using namespace cloudlut::glsl;
+
+namespace {
+constexpr float kPi = 3.14159265358979f;
+
+float distance3(vec3 a, vec3 b) { return length(a - b); }
+
+// Rebuilds (S, v) from optical-depth angles, independently of opticalDepthAngles.
+void geometryFromAngles(vec4 a, vec3& S, vec3& v) {
+  S = sphericalPoint(a.x, a.y);
+  v = frameDirection(tangentX(a.x, a.y), tangentY(a.x), S, a.z, a.w);
+}
+}  // namespace
+
+TEST_CASE("tangent frame is orthonormal everywhere, poles included", "[parameterization]") {
+  for (float theta : {0.0f, 1e-4f, 0.7f, kPi / 2, kPi - 1e-4f, kPi}) {
+    for (float phi : {0.0f, 1.0f, 3.0f, 2 * kPi}) {
+      const vec3 S = sphericalPoint(phi, theta), x = tangentX(phi, theta), y = tangentY(phi);
+      CHECK(std::fabs(length(x) - 1.0f) < 1e-6f);
+      CHECK(std::fabs(length(y) - 1.0f) < 1e-6f);
+      CHECK(std::fabs(dot(x, y)) < 1e-6f);
+      CHECK(std::fabs(dot(x, S)) < 1e-6f);
+      CHECK(std::fabs(dot(y, S)) < 1e-6f);
+    }
+  }
+}
+
+TEST_CASE("optical-depth parameterization round trip: geometry -> angles -> geometry", "[parameterization]") {
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  int checked = 0;
+  for (int i = 0; i < 20000; ++i) {
+    // random entry point, with a share of exact poles, and random inward direction, with a
+    // share of exactly grazing and exactly normal rays
+    float theta = kPi * u(rng);
+    if (i % 10 == 0) theta = 0.0f;
+    if (i % 10 == 1) theta = kPi;
+    const vec3 S = sphericalPoint(2 * kPi * u(rng), theta);
+    vec3 w = normalize(vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f));
+    w = w - dot(w, S) * S;  // tangent component
+    if (length(w) < 1e-3f) continue;
+    w = normalize(w);
+    float tv = 0.5f * kPi * u(rng);
+    if (i % 7 == 0) tv = 0.5f * kPi;  // grazing
+    if (i % 7 == 1) tv = 0.0f;        // through the centre
+    const vec3 v = std::sin(tv) * w - std::cos(tv) * S;
+    const vec4 a = opticalDepthAngles(S, v);
+    REQUIRE(std::isfinite(a.x));
+    REQUIRE(std::isfinite(a.y));
+    REQUIRE(std::isfinite(a.z));
+    REQUIRE(std::isfinite(a.w));
+    REQUIRE(a.x >= 0.0f);
+    REQUIRE(a.x < 2 * kPi + 1e-6f);
+    REQUIRE(a.w <= 0.5f * kPi + 1e-6f);
+    vec3 S2, v2;
+    geometryFromAngles(a, S2, v2);
+    REQUIRE(distance3(S, S2) < 2e-5f);
+    REQUIRE(distance3(v, v2) < 2e-3f);  // acos near θv = 0 loses digits; the ray is the same
+    const vec4 x = opticalDepthAxes(S, v);
+    for (int k = 0; k < 4; ++k) REQUIRE((x[k] >= 0.0f && x[k] <= 1.0f));
+    ++checked;
+  }
+  CHECK(checked > 19000);
+}
+
+TEST_CASE("scattering angles match the optical-depth frame when the sun is the pole", "[parameterization]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const vec3 l(0.0f, 0.0f, 1.0f);
+  for (int i = 0; i < 2000; ++i) {
+    const float thetaS = kPi * (0.01f + 0.98f * u(rng)), phiV = 2 * kPi * u(rng), thetaV = 0.5f * kPi * u(rng);
+    const vec3 S = sphericalPoint(0.0f, thetaS);
+    const vec3 v = frameDirection(tangentX(0.0f, thetaS), tangentY(0.0f), S, phiV, thetaV);
+    const vec3 a = scatteringAngles(S, v, l);
+    REQUIRE(std::fabs(a.x - thetaS) < 1e-4f);
+    REQUIRE(std::fabs(std::remainder(a.y - phiV, 2 * kPi)) < 2e-3f + (thetaV < 0.01f ? 1.0f : 0.0f));
+    REQUIRE(std::fabs(a.z - thetaV) < 2e-3f);
+  }
+}
+
+TEST_CASE("scattering angles are invariant under rotation about the sun axis", "[parameterization]") {
+  // The light field of a sphere is symmetric about l: rotating S and v together about l must
+  // not change (θS, φv, θv), even for an arbitrary l and at the poles' neighbourhood.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int i = 0; i < 2000; ++i) {
+    const vec3 l = normalize(vec3(u(rng), u(rng), u(rng)));
+    const vec3 S = normalize(vec3(u(rng), u(rng), u(rng)));
+    vec3 v = normalize(vec3(u(rng), u(rng), u(rng)));
+    if (dot(v, S) > -0.05f) v = normalize(v - 2.0f * std::max(dot(v, S), 0.0f) * S - 0.1f * S);
+    if (dot(v, S) >= 0.0f || std::fabs(dot(S, l)) > 0.999f) continue;
+    const float ang = 3.0f * u(rng);
+    auto rot = [&](vec3 p) {  // Rodrigues rotation about l
+      return p * std::cos(ang) + cross(l, p) * std::sin(ang) + l * dot(l, p) * (1.0f - std::cos(ang));
+    };
+    const vec3 a = scatteringAngles(S, v, l), b = scatteringAngles(rot(S), rot(v), l);
+    REQUIRE(std::fabs(a.x - b.x) < 1e-3f);
+    REQUIRE(std::fabs(std::remainder(a.y - b.y, 2 * kPi)) < 5e-3f + (a.z < 0.01f ? 7.0f : 0.0f));
+    REQUIRE(std::fabs(a.z - b.z) < 1e-3f);
+  }
+}
+
+TEST_CASE("texture coordinates hit texel centres at both ends of an axis", "[parameterization]") {
+  CHECK(lutTexCoord(0.0f, 32.0f) == Approx(0.5f / 32.0f));
+  CHECK(lutTexCoord(1.0f, 32.0f) == Approx(31.5f / 32.0f));
+  CHECK(lutTexCoord(-3.0f, 32.0f) == Approx(0.5f / 32.0f));
+  CHECK(lutTexCoord(0.5f, 3.0f) == Approx(0.5f));
+  CHECK(densityAxis(1.0f / 16.0f, -4.0f, 3.0f) == Approx(0.0f));
+  CHECK(densityAxis(8.0f, -4.0f, 3.0f) == Approx(1.0f));
+  CHECK(densityAxis(1.0f, -4.0f, 3.0f) == Approx(4.0f / 7.0f));
+}
+
+TEST_CASE("phase functions integrate to one over the sphere", "[parameterization][phase]") {
+  // Independent quadrature: composite Simpson in mu on a graded grid, 2π ∫ p(mu) dmu = 1.
+  auto integrate = [](auto p) {
+    const int n = 200000;
+    double sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+      const double t = static_cast<double>(i) / n;
+      const double mu = 1.0 - 2.0 * t * t;  // clusters samples at the forward peak
+      const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+      sum += w * p(static_cast<float>(mu)) * 4.0 * t;  // dmu = -4 t dt
+    }
+    return 2.0 * 3.14159265358979 * sum / (3.0 * n);
+  };
+  CHECK(integrate([](float mu) { return phaseHenyeyGreenstein(mu, 0.9f); }) == Approx(1.0).epsilon(2e-3));
+  CHECK(integrate([](float mu) { return phaseCornetteShanks(mu, 0.9f); }) == Approx(1.0).epsilon(2e-3));
+  CHECK(integrate([](float mu) { return phaseCornetteShanks(mu, 0.7f); }) == Approx(1.0).epsilon(2e-3));
+  CHECK(integrate([](float mu) { return phaseJendersieDeon(mu, jendersieDeonParameters(10.0f)); }) == Approx(1.0).epsilon(5e-3));
+  const vec4 jd = jendersieDeonParameters(10.0f);
+  CHECK(jd.x == Approx(0.9882).epsilon(1e-3));
+  CHECK(jd.y == Approx(0.5557).epsilon(1e-3));
+  CHECK(jd.z == Approx(21.996).epsilon(1e-3));
+  CHECK(jd.w == Approx(0.4824).epsilon(1e-3));
+  CHECK(phaseJendersieDeon(1.0f, jd) == Approx(586.0f).epsilon(0.01));
+}
