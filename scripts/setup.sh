@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages cloudlut builds and runs with, when any is missing.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libopenexr-dev libglm-dev libtbb-dev catch2
-          libcxxopts-dev nlohmann-json3-dev python3-matplotlib)
+          libcxxopts-dev nlohmann-json3-dev libosmesa6-dev libgl-dev libstb-dev
+          python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

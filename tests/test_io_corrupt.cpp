@@ -38,10 +38,10 @@ std::string goodFile(const iotest::TempDir& dir, SampleType type = SampleType::H
 // Overwrites a little-endian integer field and recomputes the header checksum, so that only
 // the field itself is wrong.
 void patchField(std::string& bytes, std::size_t offset, std::uint64_t value, int size) {
+  const std::uint32_t headerBytes = cloudlut::io::getU32(bytes.data() + 12);
   std::string field;
   cloudlut::io::putLe(field, value, size);
   bytes.replace(offset, static_cast<std::size_t>(size), field);
-  const std::uint32_t headerBytes = cloudlut::io::getU32(bytes.data() + 12);
   std::string sum;
   cloudlut::io::putU64(sum, cloudlut::io::fnv1a64(std::string_view(bytes).substr(0, headerBytes - 8)));
   bytes.replace(headerBytes - 8, 8, sum);

@@ -172,12 +172,13 @@ TEST_CASE("io: damaged EXR files give FileError", "[io]") {
     header.insert("cloudlutVersion", Imf::IntAttribute(7));
     const Imath::Box2i w = header.dataWindow();
     const int width = w.max.x + 1, height = w.max.y + 1;
-    std::vector<float> px(static_cast<std::size_t>(width * height * 2));
+    std::vector<Imath::half> px(static_cast<std::size_t>(width * height * 2));
+    const std::size_t stride = 2 * sizeof(Imath::half);
     Imf::FrameBuffer frame;
-    frame.insert("R", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data()),
-                                 2 * sizeof(float), 2 * sizeof(float) * width));
-    frame.insert("G", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data() + 1),
-                                 2 * sizeof(float), 2 * sizeof(float) * width));
+    frame.insert("R", Imf::Slice(Imf::HALF, reinterpret_cast<char*>(px.data()), stride,
+                                 stride * static_cast<std::size_t>(width)));
+    frame.insert("G", Imf::Slice(Imf::HALF, reinterpret_cast<char*>(px.data() + 1), stride,
+                                 stride * static_cast<std::size_t>(width)));
     in.setFrameBuffer(frame);
     in.readPixels(0, height - 1);
     {

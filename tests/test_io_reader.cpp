@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "core/Errors.h"
+#include "io/LittleEndian.h"
 #include "io/LutIo.h"
 #include "test_io_support.h"
 

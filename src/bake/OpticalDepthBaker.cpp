@@ -18,16 +18,19 @@ namespace {
 // Two-point Gauss–Legendre abscissae on a unit panel: 1/2 ∓ 1/(2√3).
 constexpr float kGaussLo = 0.2113248654f;
 constexpr float kGaussHi = 0.7886751346f;
-constexpr int kBisections = 8;
+constexpr int kBisections = 4;
 
-// Refines the first crossing of the matter threshold between t0 (below) and t1 (at or above).
+// First crossing of the matter threshold between t0 (density d0 below it) and t1 (d1 at or
+// above it): a few bisections, then the linear interpolation of the last bracket.
 float refineCrossing(const ReferenceParticle& particle, const glm::vec3& S, const glm::vec3& v,
-                     float t0, float t1, float threshold) {
+                     float t0, float d0, float t1, float d1, float threshold) {
   for (int i = 0; i < kBisections; ++i) {
     const float tm = 0.5f * (t0 + t1);
-    if (particle.density(S + tm * v) >= threshold) t1 = tm; else t0 = tm;
+    const float dm = particle.density(S + tm * v);
+    if (dm >= threshold) { t1 = tm; d1 = dm; } else { t0 = tm; d0 = dm; }
   }
-  return 0.5f * (t0 + t1);
+  const float w = d1 > d0 ? (threshold - d0) / (d1 - d0) : 0.5f;
+  return t0 + std::clamp(w, 0.0f, 1.0f) * (t1 - t0);
 }
 
 }  // namespace
@@ -56,30 +59,33 @@ ChordIntegral integrateChord(const ReferenceParticle& particle, const glm::vec3&
   const float h = L / static_cast<float>(panels);
   double sum = 0.0;
   float first = atS >= threshold ? 0.0f : -1.0f;
-  float tPrev = 0.0f;
+  float tPrev = 0.0f, dPrev = atS;
   for (int p = 0; p < panels; ++p) {
     const float a = h * static_cast<float>(p);
     const float ts[2] = {a + kGaussLo * h, a + kGaussHi * h};
     for (float t : ts) {
       const float d = particle.density(s + t * v);
       sum += d;
-      if (first < 0.0f && d >= threshold) first = refineCrossing(particle, s, v, tPrev, t, threshold) / L;
+      if (first < 0.0f && d >= threshold) first = refineCrossing(particle, s, v, tPrev, dPrev, t, d, threshold) / L;
       tPrev = t;
+      dPrev = d;
     }
   }
   const float mean = static_cast<float>(sum / (2.0 * panels));
   return {std::clamp(mean, 0.0f, 1.0f), first < 0.0f ? 1.0f : std::clamp(first, 0.0f, 1.0f)};
 }
 
+std::array<Axis, 4> opticalDepthAxes(const std::array<int, 4>& d) {
+  const double pi = 3.14159265358979323846;
+  return {Axis{"phi_s", "rad", 0.0, 2.0 * pi, d[0], true}, Axis{"theta_s", "rad", 0.0, pi, d[1], false},
+          Axis{"phi_v", "rad", 0.0, 2.0 * pi, d[2], true}, Axis{"theta_v", "rad", 0.0, 0.5 * pi, d[3], false}};
+}
+
 Table4D bakeOpticalDepth(const ReferenceParticle& particle, const OpticalDepthSettings& settings,
                          const ProgressFn& progress) {
   const auto& d = settings.dims;
   const int steps = settings.steps > 0 ? settings.steps : defaultSteps(particle.model());
-  const double pi = 3.14159265358979323846;
-  std::array<Axis, 4> axes{Axis{"phi_s", "rad", 0.0, 2.0 * pi, d[0], true},
-                           Axis{"theta_s", "rad", 0.0, pi, d[1], false},
-                           Axis{"phi_v", "rad", 0.0, 2.0 * pi, d[2], true},
-                           Axis{"theta_v", "rad", 0.0, 0.5 * pi, d[3], false}};
+  const std::array<Axis, 4> axes = opticalDepthAxes(d);
   Table4D table("optical_depth", axes,
                 {{"mean_density", "mean normalised density along the chord; optical depth = value * chord length * extinction * radius * density scale"},
                  {"first_matter", "distance along the chord to the first density >= threshold, divided by the chord length"}});

@@ -41,6 +41,9 @@ int defaultSteps(DensityModel model);
 ChordIntegral integrateChord(const ReferenceParticle& particle, const glm::vec3& S,
                              const glm::vec3& v, int steps);
 
+// The table's axes for the given dimensions: φS ∈ [0, 2π], θS ∈ [0, π], φv ∈ [0, 2π], θv ∈ [0, π/2].
+std::array<Axis, 4> opticalDepthAxes(const std::array<int, 4>& dims);
+
 // Bakes the table over every node, in parallel (oneTBB); identical output for any thread count.
 Table4D bakeOpticalDepth(const ReferenceParticle& particle, const OpticalDepthSettings& settings,
                          const ProgressFn& progress = {});

@@ -48,16 +48,16 @@ float proceduralDensity(DensityModel model, const GradientNoise& noise, const gl
   switch (model) {
     case DensityModel::Noise: {
       // fall-off times a noise around 1: dense core, ragged holes and a soft edge
-      const float n = 0.5f + 0.5f * noise.fbm(p * 2.5f, 4);
+      const float n = 0.5f + 0.5f * noise.fbm(p * 2.5f, 3);
       return std::clamp(2.0f * falloff * (0.25f + 1.5f * n) - 0.15f, 0.0f, 1.0f);
     }
     case DensityModel::Threshold: {
-      const float n = 0.5f + 0.5f * noise.fbm(p * 3.0f, 4);
+      const float n = 0.5f + 0.5f * noise.fbm(p * 3.0f, 3);
       return smoothstep(0.42f, 0.58f, n + 0.35f * falloff - 0.1f) * smoothstep(1.0f, 0.85f, r);
     }
     case DensityModel::Pyroclastic: {
       const glm::vec3 dir = r > 1e-6f ? p / r : glm::vec3(0.0f, 0.0f, 1.0f);
-      const float turbulence = std::fabs(noise.fbm(dir * 2.0f, 5));
+      const float turbulence = std::fabs(noise.fbm(dir * 2.0f, 4));
       const float radius = 0.62f + 0.55f * turbulence;
       return std::clamp((std::min(radius, 0.97f) - r) / 0.06f, 0.0f, 1.0f);
     }

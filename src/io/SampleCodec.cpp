@@ -1,12 +1,34 @@
+// Sample types: their names, and the encoding of table values as stored samples.
 #include "io/SampleCodec.h"
 
 #include <Imath/half.h>
 
 #include <cmath>
 
+#include "io/Fnv1a.h"
 #include "io/LittleEndian.h"
 
 namespace cloudlut::io {
+
+std::optional<SampleType> parseSampleType(std::string_view name) {
+  if (name == "u8") return SampleType::U8;
+  if (name == "half") return SampleType::Half;
+  if (name == "float") return SampleType::Float;
+  return std::nullopt;
+}
+
+std::string toString(SampleType type) {
+  switch (type) {
+    case SampleType::U8: return "u8";
+    case SampleType::Half: return "half";
+    case SampleType::Float: return "float";
+  }
+  return "float";
+}
+
+std::uint64_t payloadChecksum(const Table4D& table, SampleType type) {
+  return fnv1a64(encodePayload(table, type));
+}
 
 std::size_t sampleBytes(SampleType type) {
   switch (type) {

@@ -1,3 +1,4 @@
+// The JSON self-description of tables, and checks on the sizes that descriptions claim.
 #include "io/TableDescription.h"
 
 #include <algorithm>
@@ -10,26 +11,6 @@
 #include "io/SampleCodec.h"
 
 namespace cloudlut::io {
-
-std::optional<SampleType> parseSampleType(std::string_view name) {
-  if (name == "u8") return SampleType::U8;
-  if (name == "half") return SampleType::Half;
-  if (name == "float") return SampleType::Float;
-  return std::nullopt;
-}
-
-std::string toString(SampleType type) {
-  switch (type) {
-    case SampleType::U8: return "u8";
-    case SampleType::Half: return "half";
-    case SampleType::Float: return "float";
-  }
-  return "float";
-}
-
-std::uint64_t payloadChecksum(const Table4D& table, SampleType type) {
-  return fnv1a64(encodePayload(table, type));
-}
 
 std::string checksumHex(std::uint64_t checksum) {
   char text[17];

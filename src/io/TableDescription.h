@@ -1,5 +1,6 @@
 #pragma once
 // The JSON self-description of a table (describeTable) and the way back to an empty Table4D.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>

@@ -1,0 +1,64 @@
+#pragma once
+// Multiple scattering (orders 2 … N or 2 … ∞) in the homogeneous unit sphere, fast method.
+//
+// The light field inside a sphere lit by a distant sun is symmetric about the sun direction l,
+// so the in-scattered source J(x, ω) (radiance emitted at x along ω per unit optical length)
+// is stored on a 4D grid: x in the meridian plane (radius graded in optical depth from the
+// surface, position zenith from l), ω on a light-frame direction grid folded by the mirror
+// symmetry (DirectionGrid). A sample at any point is rotated about l into the meridian plane.
+//
+// One order maps J_n to J_{n+1} = M·T(J_n):
+//   T: L(x, ω) = ∫_0^{d} σ e^{-σs} J(x − sω, ω) ds, Gauss–Legendre in u = 1 − e^{−σs}; the
+//      direction's zenith from l is constant along the ray, so J is read by trilinear
+//      interpolation in (depth, position zenith, relative azimuth) — a stencil precomputed once
+//      per density and reused by every order;
+//   M: the phase convolution, one dense matrix product over the direction grid (energy
+//      conserving by construction).
+// J_2 comes straight from the sun: the once-scattered radiance P1(−l·ω')·A(x, ω') with A the
+// closed-form-sun-path integral along each ray, on a direction grid refined toward the sun's
+// forward peak, convolved with the later phase function.
+// The table value is then LM(S, v) = ∫_0^chord σ e^{-σt} ΣJ_n(S + t v, −v) dt.
+//
+// Converged (2 … ∞): the same operator, solved as (I − K) J = J_2 by restarted GMRES with
+// order-independent (fixed-block) inner products, then closed on energy (see the report).
+#include <array>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/ScatteringBaker.h"
+#include "core/Progress.h"
+#include "core/Table4D.h"
+
+namespace cloudlut::bake {
+
+// Internal resolution of the fast method.
+struct FastResolution {
+  int radial = 16;        // depth nodes (surface to centre)
+  int zenith = 32;        // position-zenith nodes over [0, π]
+  int dirTheta = 24;      // direction-zenith nodes over [0, π]
+  int dirPhi = 13;        // direction-azimuth nodes over [0, π]
+  int fineTheta = 48;     // once-scattered light: direction-zenith nodes, graded toward −l
+  int finePhi = 25;
+  int transportPoints = 12;  // Gauss points per ray in the transport operator
+  int gatherPoints = 24;     // ... in the final gather to the table nodes
+  double grading = 32.0;     // depth grading a: q = α δ + (1 − α) ln(1 + aσδ) / ln(1 + aσ), δ = 1 − r
+  double linearShare = 0.25; // α
+};
+
+// Fills the multiple-scattering values of density slice `slice` (σ = optical radius) of
+// `table` (axes θS, φv, θv, log2 ρ). `orders` <= 0 means converged. Adds what it measured
+// (orders, seconds, iterations, residual) to `report`.
+class FastMultipleScattering {
+ public:
+  FastMultipleScattering(const ScatteringSettings& settings, const FastResolution& res = {});
+  ~FastMultipleScattering();
+  void bakeSlice(double sigma, int slice, Table4D& table, nlohmann::json& report,
+                 const ProgressFn& progress, double progressBase, double progressSpan) const;
+
+ private:
+  struct Shared;
+  Shared* shared_;
+};
+
+}  // namespace cloudlut::bake

@@ -1,0 +1,143 @@
+#include "bake/ScatteringBaker.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "bake/EnergyBalance.h"
+#include "bake/MultipleScattering.h"
+#include "bake/ScatteringPaper.h"
+#include "bake/SingleScattering.h"
+
+namespace cloudlut::bake {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+void validate(const ScatteringSettings& s) {
+  for (int d : s.dims)
+    if (d < 2 || d > 4096) throw std::invalid_argument("scattering table dimensions must lie in [2, 4096]");
+  if (!(s.sMax > s.sMin) || !std::isfinite(s.sMin) || !std::isfinite(s.sMax) || s.sMin < -40 || s.sMax > 40)
+    throw std::invalid_argument("the density range needs finite sMin < sMax within [-40, 40]");
+  if (!(s.extinction > 0) || !(s.radius > 0) || !std::isfinite(s.extinction * s.radius))
+    throw std::invalid_argument("extinction and radius must be positive");
+  for (const PhaseSpec* p : {&s.firstPhase, &s.laterPhase}) {
+    if (p->kind < 0 || p->kind > 3) throw std::invalid_argument("phase kind must be 0 (iso), 1 (HG), 2 (CS) or 3 (JD)");
+    if ((p->kind == 1 || p->kind == 2) && !(p->param > -0.999f && p->param < 0.999f))
+      throw std::invalid_argument("phase g must lie in (-0.999, 0.999)");
+    if (p->kind == 3 && !(p->param >= 5.0f && p->param <= 50.0f))
+      throw std::invalid_argument("Jendersie-d'Eon droplet diameter must lie in [5, 50] um");
+  }
+  if (!s.single && !s.multiple) throw std::invalid_argument("nothing to bake: neither single nor multiple");
+  if (s.method == ScatteringMethod::Paper && s.orders <= 0)
+    throw std::invalid_argument("the paper method computes a fixed number of orders (orders >= 2)");
+  checkTableFitsInMemory(s.dims, 1, (s.single ? 1 : 0) + (s.multiple ? 1 : 0));
+}
+
+nlohmann::json phaseJson(const PhaseSpec& p) {
+  static const char* names[] = {"isotropic", "henyey_greenstein", "cornette_shanks", "jendersie_deon"};
+  return {{"kind", p.kind}, {"param", p.param}, {"name", names[p.kind]}};
+}
+
+Table4D makeTable(const ScatteringSettings& s, const char* name, const char* channel, const char* meaning) {
+  const auto& d = s.dims;
+  std::array<Axis, 4> axes{Axis{"theta_s", "rad", 0.0, kPi, d[0], false},
+                           Axis{"phi_v", "rad", 0.0, 2.0 * kPi, d[1], true},
+                           Axis{"theta_v", "rad", 0.0, 0.5 * kPi, d[2], false},
+                           Axis{"log2_density", "log2", s.sMin, s.sMax, d[3], false}};
+  Table4D t(name, axes, {{channel, meaning}});
+  auto& p = t.parameters();
+  p["extinction_per_m"] = s.extinction;
+  p["radius_m"] = s.radius;
+  p["unit_optical_radius"] = s.extinction * s.radius;
+  p["first_phase"] = phaseJson(s.firstPhase);
+  p["later_phase"] = phaseJson(s.laterPhase);
+  p["method"] = toString(s.method);
+  p["density_range_log2"] = {s.sMin, s.sMax};
+  p["particle"] = "homogeneous unit sphere";
+  return t;
+}
+
+}  // namespace
+
+const char* toString(ScatteringMethod method) { return method == ScatteringMethod::Paper ? "paper" : "fast"; }
+
+ScatteringResult bakeScattering(const ScatteringSettings& settings, const ProgressFn& progress) {
+  validate(settings);
+  ScatteringResult result;
+  nlohmann::json& report = result.report;
+  report["method"] = toString(settings.method);
+  const double sigma1 = settings.extinction * settings.radius;
+  const int nRho = settings.dims[3];
+  const auto sigmaOf = [&](int k) {
+    const double s = settings.sMin + (settings.sMax - settings.sMin) * k / (nRho - 1);
+    return sigma1 * std::exp2(s);
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  const double singleSpan = settings.single ? (settings.multiple ? 0.05 : 1.0) : 0.0;
+
+  if (settings.single) {
+    Table4D t = makeTable(settings, "single_scattering", "radiance",
+                          "single-scattered radiance per unit sun irradiance WITHOUT the phase function "
+                          "(multiply by P1(v.l)), sr^-1 per sr^-1 of phase");
+    t.parameters()["orders"] = 1;
+    t.parameters()["phase_included"] = false;
+    if (settings.method == ScatteringMethod::Paper) {
+      t.parameters()["method"] = "paper";
+    }
+    for (int k = 0; k < nRho; ++k) {
+      bakeSingleScatteringSlice(sigmaOf(k), k, t);
+      reportProgress(progress, "single scattering", singleSpan * (k + 1) / nRho);
+    }
+    result.single = std::move(t);
+  }
+  const double tSingle = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  const auto t1 = std::chrono::steady_clock::now();
+  if (settings.multiple) {
+    Table4D t = makeTable(settings, "multiple_scattering", "radiance",
+                          settings.orders > 0
+                              ? "radiance of scattering orders 2..N leaving the sphere toward the camera, per unit sun irradiance, sr^-1"
+                              : "radiance of every scattering order from 2 on (converged) leaving the sphere toward the camera, per unit sun irradiance, sr^-1");
+    t.parameters()["orders"] = settings.orders > 0 ? nlohmann::json(settings.orders) : nlohmann::json("converged");
+    t.parameters()["first_order"] = 2;
+    t.parameters()["phase_included"] = true;
+    nlohmann::json slices = nlohmann::json::array();
+    if (settings.method == ScatteringMethod::Fast) {
+      const FastResolution res;
+      FastMultipleScattering fast(settings, res);
+      report["resolution"] = {{"radial", res.radial}, {"zenith", res.zenith}, {"dir_theta", res.dirTheta},
+                              {"dir_phi", res.dirPhi}, {"fine_theta", res.fineTheta}, {"fine_phi", res.finePhi},
+                              {"transport_points", res.transportPoints}, {"gather_points", res.gatherPoints}};
+      for (int k = 0; k < nRho; ++k) {
+        nlohmann::json r;
+        fast.bakeSlice(sigmaOf(k), k, t, r, progress, singleSpan + (1.0 - singleSpan) * k / nRho,
+                       (1.0 - singleSpan) / nRho);
+        slices.push_back(r);
+      }
+    } else {
+      bakePaperMultipleScattering(settings, t, slices, progress, singleSpan, 1.0 - singleSpan);
+    }
+    report["multiple_slices"] = slices;
+    result.multiple = std::move(t);
+  }
+  const double tMultiple = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+
+  const auto t2 = std::chrono::steady_clock::now();
+  const Table4D* s = result.single ? &*result.single : nullptr;
+  const Table4D* m = result.multiple ? &*result.multiple : nullptr;
+  EnergyInputs ein;
+  ein.unitOpticalRadius = sigma1;
+  ein.firstPhaseKind = settings.firstPhase.kind;
+  ein.firstPhaseParam = settings.firstPhase.param;
+  report["energy"] = computeEnergyBalance(s, m, ein).toJson()["slices"];
+  const double tEnergy = std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
+  report["orders"] = settings.orders > 0 ? nlohmann::json(settings.orders) : nlohmann::json("converged");
+  report["seconds"] = {{"single", tSingle}, {"multiple", tMultiple}, {"energy_check", tEnergy}};
+  reportProgress(progress, "done", 1.0);
+  return result;
+}
+
+}  // namespace cloudlut::bake

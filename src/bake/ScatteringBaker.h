@@ -1,0 +1,65 @@
+#pragma once
+// The single- and multiple-scattering tables of the homogeneous unit sphere (seed §4.2–4.3,
+// DESIGN.md conventions), 4D tables over (θS, φv, θv, log2 ρ):
+//   "single_scattering"   L1(S, v) = ∫_0^chord σ e^{-σt} e^{-σ d_sun(S + t v)} dt, WITHOUT the
+//                         phase function (single = P1(v·l) · L1 exactly);
+//   "multiple_scattering" orders 2 … N (or 2 … ∞, "converged") of the radiance leaving the
+//                         sphere at S toward the camera (direction −v), phase functions included.
+// Radiance per unit sun irradiance (sr⁻¹); σ = extinction · radius · ρ in unit-sphere units.
+//
+// Methods:
+//   Fast  (default) — ours: L1 by graded Gauss–Legendre quadrature along each chord with the
+//         closed-form sun path; multiple scattering on an axially symmetric volume grid
+//         (depth-graded radius, position zenith, global direction zenith/azimuth), a transport
+//         operator precomputed once per density and applied per order, the phase convolution
+//         as one matrix product per order, and the first scattering of sunlight evaluated from
+//         closed-form sun transmittance (see MultipleScattering.h).
+//   Paper — a faithful baseline of the seed's algorithm (4D intermediate volume table, J by
+//         brute-force gather, L by fixed-step marching); slow, meant for comparisons.
+//
+// Multithreaded with oneTBB (limit the threads with tbb::global_control); the output is
+// bit-identical for any number of threads.
+#include <array>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "core/Progress.h"
+#include "core/Table4D.h"
+
+namespace cloudlut::bake {
+
+enum class ScatteringMethod { Fast, Paper };
+
+// Phase function as in phaseFunction() of cloudlut_phase.glsl: kind 0 isotropic,
+// 1 Henyey–Greenstein (param = g), 2 Cornette–Shanks (param = g), 3 Jendersie–d'Eon
+// (param = droplet diameter in µm).
+struct PhaseSpec {
+  int kind = 2;
+  float param = 0.9f;
+};
+
+struct ScatteringSettings {
+  std::array<int, 4> dims{32, 64, 16, 8};  // θS, φv, θv, ρ nodes
+  double sMin = -4, sMax = 3;              // log2 ρ range of the density axis
+  double extinction = 0.07, radius = 183.8;  // β (1/m), R (m)
+  PhaseSpec firstPhase{2, 0.9f}, laterPhase{2, 0.7f};
+  int orders = 18;  // highest order in the multiple table; <= 0 means converged (2 … ∞)
+  ScatteringMethod method = ScatteringMethod::Fast;
+  bool single = true, multiple = true;
+};
+
+struct ScatteringResult {
+  std::optional<Table4D> single, multiple;
+  // Per density: energy shares (unscattered, single, multiple, total), orders used, and
+  // seconds per stage; plus the method and the internal resolution.
+  nlohmann::json report;
+};
+
+// Throws std::invalid_argument for settings that cannot be baked (dims < 2, bad phase, ...).
+ScatteringResult bakeScattering(const ScatteringSettings& settings, const ProgressFn& progress = {});
+
+// Name used in parameters and reports: "fast" or "paper".
+const char* toString(ScatteringMethod method);
+
+}  // namespace cloudlut::bake

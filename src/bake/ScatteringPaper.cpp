@@ -1,0 +1,168 @@
+#include "bake/ScatteringPaper.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
+
+#include "bake/Quadrature.h"
+#include "core/Glsl.h"
+
+namespace cloudlut::bake {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Volume {
+  int nS, nP, nV, nR;
+  std::size_t size() const { return static_cast<std::size_t>(nS) * nP * nV * nR; }
+  std::size_t index(int iS, int iP, int iV, int iR) const {
+    return ((static_cast<std::size_t>(iR) * nV + iV) * nP + iP) * nS + iS;
+  }
+  double thetaS(int i) const { return kPi * i / (nS - 1); }
+  double phiV(int i) const { return 2.0 * kPi * i / (nP - 1); }
+  double thetaV(int i) const { return kPi * i / (nV - 1); }
+  double radius(int i) const { return static_cast<double>(i) / (nR - 1); }
+};
+
+// Point and view direction of a cell, in the light frame (l = +z, point in the xz plane).
+void cellGeometry(const Volume& vol, int iS, int iP, int iV, int iR, glm::dvec3& P, glm::dvec3& v) {
+  const double ts = vol.thetaS(iS), pv = vol.phiV(iP), tv = vol.thetaV(iV);
+  const glm::dvec3 n(std::sin(ts), 0.0, std::cos(ts));
+  const glm::dvec3 x(std::cos(ts), 0.0, -std::sin(ts)), y(0.0, 1.0, 0.0);
+  P = vol.radius(iR) * n;
+  v = std::sin(tv) * (std::cos(pv) * x + std::sin(pv) * y) - std::cos(tv) * n;
+}
+
+// 4D interpolation of a volume field at point Q (|Q| ≤ 1) for view direction v.
+float sampleVolume(const Volume& vol, const std::vector<float>& f, const glm::dvec3& Q, const glm::dvec3& v) {
+  const double r = std::min(1.0, glm::length(Q));
+  const glm::vec3 n = r > 1e-6 ? glm::vec3(Q / r) : glm::vec3(0.0f, 0.0f, 1.0f);
+  const glm::vec3 a = glsl::scatteringAngles(n, glm::vec3(v), glm::vec3(0.0f, 0.0f, 1.0f));
+  const double c[4] = {a.x / kPi * (vol.nS - 1), a.y / (2.0 * kPi) * (vol.nP - 1), a.z / kPi * (vol.nV - 1),
+                       r * (vol.nR - 1)};
+  const int n4[4] = {vol.nS, vol.nP, vol.nV, vol.nR};
+  int i[4];
+  float fr[4];
+  for (int k = 0; k < 4; ++k) {
+    const double cc = std::clamp(c[k], 0.0, static_cast<double>(n4[k] - 1));
+    i[k] = std::min(static_cast<int>(cc), n4[k] - 2);
+    fr[k] = static_cast<float>(cc - i[k]);
+  }
+  float out = 0.0f;
+  for (int corner = 0; corner < 16; ++corner) {
+    float w = 1.0f;
+    int j[4];
+    for (int k = 0; k < 4; ++k) {
+      const bool hi = (corner >> k) & 1;
+      j[k] = i[k] + (hi ? 1 : 0);
+      w *= hi ? fr[k] : 1.0f - fr[k];
+    }
+    out += w * f[vol.index(j[0], j[1], j[2], j[3])];
+  }
+  return out;
+}
+
+}  // namespace
+
+void bakePaperMultipleScattering(const ScatteringSettings& settings, Table4D& table,
+                                 nlohmann::json& slices, const ProgressFn& progress,
+                                 double progressBase, double progressSpan) {
+  const auto& d = settings.dims;
+  const Volume vol{d[0], d[1], 2 * (d[2] - 1) + 1, d[2]};
+  const int steps = 2 * d[2];
+  const glm::dvec3 l(0, 0, 1);
+  const std::size_t N = vol.size();
+  const int nRho = d[3];
+  const PhaseSpec p1 = settings.firstPhase, pm = settings.laterPhase;
+
+  // Gather directions: the table's own (φv, θv) nodes (periodic φ node counted once), with
+  // weights ∫ hat(θ) sinθ dθ · Δφ.
+  std::vector<double> wTheta(vol.nV, 0.0);
+  const GaussRule& g = gaussLegendre(8);
+  for (int a = 0; a + 1 < vol.nV; ++a) {
+    const double t0 = vol.thetaV(a), t1 = vol.thetaV(a + 1);
+    for (int k = 0; k < 8; ++k) {
+      const double w = g.w[k] * (t1 - t0) * std::sin(t0 + (t1 - t0) * g.x[k]);
+      wTheta[a] += w * (1.0 - g.x[k]);
+      wTheta[a + 1] += w * g.x[k];
+    }
+  }
+  const double dPhi = 2.0 * kPi / (vol.nP - 1);
+
+  for (int k = 0; k < nRho; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double s = settings.sMin + (settings.sMax - settings.sMin) * k / (nRho - 1);
+    const double sigma = settings.extinction * settings.radius * std::exp2(s);
+    std::vector<float> L(N), J(N), sum(N, 0.0f);
+    // Fixed-step marching from the cell along its view direction; `source(Q, v)` per step.
+    const auto march = [&](const auto& source, std::vector<float>& out) {
+      tbb::parallel_for(std::size_t(0), N, [&](std::size_t c) {
+        const int iS = static_cast<int>(c % vol.nS);
+        const int iP = static_cast<int>((c / vol.nS) % vol.nP);
+        const int iV = static_cast<int>((c / (static_cast<std::size_t>(vol.nS) * vol.nP)) % vol.nV);
+        const int iR = static_cast<int>(c / (static_cast<std::size_t>(vol.nS) * vol.nP * vol.nV));
+        glm::dvec3 P, v;
+        cellGeometry(vol, iS, iP, iV, iR, P, v);
+        const double len = distanceToSphere(P, v);
+        double acc = 0.0;
+        if (len > 0.0) {
+          const double h = len / steps;
+          for (int st = 0; st < steps; ++st) {
+            const double ta = st * h, tb = ta + h;
+            const double w = std::exp(-sigma * ta) - std::exp(-sigma * tb);
+            acc += w * source(P + (ta + 0.5 * h) * v, v);
+          }
+        }
+        out[c] = static_cast<float>(acc);
+      });
+    };
+    // L(1): without the phase function.
+    march([&](const glm::dvec3& Q, const glm::dvec3&) { return std::exp(-sigma * sunPath(Q, l)); }, L);
+    const int orders = settings.orders;
+    for (int n = 2; n <= orders; ++n) {
+      // J(n): brute-force gather over the directions of the cell's own point.
+      tbb::parallel_for(std::size_t(0), N, [&](std::size_t c) {
+        const int iS = static_cast<int>(c % vol.nS);
+        const int iP = static_cast<int>((c / vol.nS) % vol.nP);
+        const int iV = static_cast<int>((c / (static_cast<std::size_t>(vol.nS) * vol.nP)) % vol.nV);
+        const int iR = static_cast<int>(c / (static_cast<std::size_t>(vol.nS) * vol.nP * vol.nV));
+        glm::dvec3 P, v;
+        cellGeometry(vol, iS, iP, iV, iR, P, v);
+        double acc = 0.0;
+        for (int jV = 0; jV < vol.nV; ++jV)
+          for (int jP = 0; jP + 1 < vol.nP; ++jP) {
+            glm::dvec3 Pw, w;
+            cellGeometry(vol, iS, jP, jV, iR, Pw, w);
+            double value = L[vol.index(iS, jP, jV, iR)];
+            if (n == 2) value *= glsl::phaseFunction(p1.kind, static_cast<float>(glm::dot(w, l)), p1.param);
+            acc += wTheta[jV] * dPhi * value *
+                   glsl::phaseFunction(pm.kind, static_cast<float>(glm::dot(w, v)), pm.param);
+          }
+        J[c] = static_cast<float>(acc);
+      });
+      // L(n): marching through J(n) with 4D interpolation.
+      march([&](const glm::dvec3& Q, const glm::dvec3& v) { return sampleVolume(vol, J, Q, v); }, L);
+      for (std::size_t c = 0; c < N; ++c) sum[c] += L[c];
+      reportProgress(progress, "multiple scattering (paper)",
+                     progressBase + progressSpan * (k + static_cast<double>(n - 1) / orders) / nRho);
+    }
+    // Copy r = 1, θv ≤ π/2 to the output.
+    const auto& ax = table.axes();
+    for (int iS = 0; iS < ax[0].size; ++iS)
+      for (int iP = 0; iP < ax[1].size; ++iP)
+        for (int iV = 0; iV < ax[2].size; ++iV)
+          table.at(table.index(iS, iP, iV, k), 0) = std::max(0.0f, sum[vol.index(iS, iP, iV, vol.nR - 1)]);
+    slices.push_back({{"sigma", sigma},
+                      {"orders", orders},
+                      {"volume", {vol.nS, vol.nP, vol.nV, vol.nR}},
+                      {"steps", steps},
+                      {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}});
+  }
+}
+
+}  // namespace cloudlut::bake

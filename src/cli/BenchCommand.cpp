@@ -1,0 +1,51 @@
+// `cloudlut bench`: speed against accuracy, every figure measured in one run.
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include "cli/BenchSuites.h"
+#include "cli/Command.h"
+#include "cli/Options.h"
+#include "cli/TtyProgress.h"
+#include "core/Errors.h"
+
+namespace cloudlut::cli {
+namespace {
+
+int runBench(int argc, char** argv) {
+  cxxopts::Options options("cloudlut bench", "Measure speed and accuracy; write OUT/bench.csv.");
+  options.add_options()
+    ("out", "output directory", cxxopts::value<std::string>()->default_value("out/bench"))
+    ("suite", "suites to run: optical-depth, all", cxxopts::value<std::string>()->default_value("all"))
+    ("quick", "reduced resolutions for a fast look")
+    ("threads", "worker threads (0 = all cores)", cxxopts::value<int>()->default_value("0"))
+    ("quiet", "no progress output");
+  cxxopts::ParseResult args;
+  if (!parseOptions(options, argc, argv, args)) return kExitOk;
+  const std::string suite = args["suite"].as<std::string>();
+  const std::set<std::string> known{"optical-depth", "all"};
+  if (!known.count(suite)) throw UsageError("--suite: unknown suite '" + suite + "' (optical-depth, all)");
+  const std::filesystem::path out = args["out"].as<std::string>();
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec || !std::filesystem::is_directory(out)) throw UsageError("cannot create output directory '" + out.string() + "'");
+
+  BenchOptions opts;
+  opts.quick = args.count("quick") > 0;
+  opts.threads = args["threads"].as<int>();
+  if (opts.threads < 0) throw UsageError("--threads must be 0 (all cores) or positive");
+  opts.progress = makeTtyProgress(args.count("quiet") > 0);
+  BenchReport report;
+  if (suite == "optical-depth" || suite == "all") benchOpticalDepth(report, opts);
+  finishTtyProgress();
+  report.writeCsv(out / "bench.csv");
+  report.print();
+  std::printf("\nwrote %s\n", (out / "bench.csv").c_str());
+  return kExitOk;
+}
+
+const CommandRegistration registration{"bench", "measure speed against accuracy (CSV for the charts)", runBench};
+
+}  // namespace
+}  // namespace cloudlut::cli

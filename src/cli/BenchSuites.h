@@ -1,0 +1,20 @@
+#pragma once
+// The suites `cloudlut bench` runs; each measures speed and accuracy against an independent
+// reference and appends rows to the report.
+#include "cli/BenchReport.h"
+#include "core/Progress.h"
+
+namespace cloudlut::cli {
+
+struct BenchOptions {
+  bool quick = false;  // reduced resolutions, for a fast look
+  int threads = 0;     // the machine's cores when 0
+  ProgressFn progress;
+};
+
+// Optical-depth table: default bake on all threads and on one; time against error for several
+// samples-per-diameter values, against a 4096-sample integration of the same particle; every
+// density model at its default.
+void benchOpticalDepth(BenchReport& report, const BenchOptions& options);
+
+}  // namespace cloudlut::cli

@@ -1,0 +1,85 @@
+#pragma once
+// The OpenGL entry points the renderer uses, loaded from a GlContext (no GLEW/glad, no reliance
+// on the library exporting them). Types come from <GL/glcorearb.h>.
+#include <GL/glcorearb.h>
+
+#include "render/GlContext.h"
+
+namespace cloudlut::render {
+
+#define CLOUDLUT_GL_FUNCTIONS(X)                                  \
+  X(PFNGLGETSTRINGPROC, GetString)                                \
+  X(PFNGLGETINTEGERVPROC, GetIntegerv)                            \
+  X(PFNGLGETERRORPROC, GetError)                                  \
+  X(PFNGLENABLEPROC, Enable)                                      \
+  X(PFNGLDISABLEPROC, Disable)                                    \
+  X(PFNGLCULLFACEPROC, CullFace)                                  \
+  X(PFNGLFRONTFACEPROC, FrontFace)                                \
+  X(PFNGLVIEWPORTPROC, Viewport)                                  \
+  X(PFNGLFINISHPROC, Finish)                                      \
+  X(PFNGLPIXELSTOREIPROC, PixelStorei)                            \
+  X(PFNGLGENTEXTURESPROC, GenTextures)                            \
+  X(PFNGLDELETETEXTURESPROC, DeleteTextures)                      \
+  X(PFNGLBINDTEXTUREPROC, BindTexture)                            \
+  X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                        \
+  X(PFNGLTEXIMAGE3DPROC, TexImage3D)                              \
+  X(PFNGLTEXPARAMETERIPROC, TexParameteri)                        \
+  X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                    \
+  X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)              \
+  X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                    \
+  X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                  \
+  X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)            \
+  X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                  \
+  X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)            \
+  X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)    \
+  X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)      \
+  X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                            \
+  X(PFNGLREADBUFFERPROC, ReadBuffer)                              \
+  X(PFNGLREADPIXELSPROC, ReadPixels)                              \
+  X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                        \
+  X(PFNGLBLENDFUNCSEPARATEIPROC, BlendFuncSeparatei)              \
+  X(PFNGLBLENDEQUATIONIPROC, BlendEquationi)                      \
+  X(PFNGLCREATESHADERPROC, CreateShader)                          \
+  X(PFNGLDELETESHADERPROC, DeleteShader)                          \
+  X(PFNGLSHADERSOURCEPROC, ShaderSource)                          \
+  X(PFNGLCOMPILESHADERPROC, CompileShader)                        \
+  X(PFNGLGETSHADERIVPROC, GetShaderiv)                            \
+  X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                  \
+  X(PFNGLCREATEPROGRAMPROC, CreateProgram)                        \
+  X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                        \
+  X(PFNGLATTACHSHADERPROC, AttachShader)                          \
+  X(PFNGLLINKPROGRAMPROC, LinkProgram)                            \
+  X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                          \
+  X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                \
+  X(PFNGLUSEPROGRAMPROC, UseProgram)                              \
+  X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)              \
+  X(PFNGLUNIFORM1IPROC, Uniform1i)                                \
+  X(PFNGLUNIFORM1FPROC, Uniform1f)                                \
+  X(PFNGLUNIFORM2FPROC, Uniform2f)                                \
+  X(PFNGLUNIFORM3FPROC, Uniform3f)                                \
+  X(PFNGLUNIFORM4FPROC, Uniform4f)                                \
+  X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                  \
+  X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                    \
+  X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)              \
+  X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                    \
+  X(PFNGLGENBUFFERSPROC, GenBuffers)                              \
+  X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                        \
+  X(PFNGLBINDBUFFERPROC, BindBuffer)                              \
+  X(PFNGLBUFFERDATAPROC, BufferData)                              \
+  X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                      \
+  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)
+
+struct GlFunctions {
+#define CLOUDLUT_GL_MEMBER(type, name) type name = nullptr;
+  CLOUDLUT_GL_FUNCTIONS(CLOUDLUT_GL_MEMBER)
+#undef CLOUDLUT_GL_MEMBER
+};
+
+// Loads every entry point above from the (current) context; throws GlError naming the first
+// one that is missing.
+GlFunctions loadGlFunctions(const GlContext& context);
+
+// Throws GlError("<what>: GL error 0x...") if glGetError reports an error.
+void checkGlError(const GlFunctions& gl, const char* what);
+
+}  // namespace cloudlut::render

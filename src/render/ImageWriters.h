@@ -1,0 +1,27 @@
+#pragma once
+// Writing rendered images. Both writers write a temporary file beside the destination and
+// rename it over the final name (a final name holds either nothing or a complete image); a
+// directory that does not exist or cannot be written raises UsageError.
+#include <filesystem>
+
+#include <glm/vec3.hpp>
+
+#include "render/Renderer.h"
+
+namespace cloudlut::render {
+
+// 8-bit sRGB PNG of the image composited over a uniform background of radiance `background`
+// (the sky colour): c = radiance + (1 − A)·background, tone-mapped by 1 − e^{−exposure·c}
+// per channel, then sRGB-encoded. Opaque (RGB, no alpha).
+void writePng(const Image& image, const std::filesystem::path& path, const glm::vec3& background,
+              float exposure);
+
+// OpenEXR, FLOAT channels: R, G, B linear radiance (not premultiplied further: it is the light
+// the particles send toward the camera), A = 1 − transmittance, Z = distance to the closest
+// cloud (+infinity where there is none). ZIP compression.
+void writeExr(const Image& image, const std::filesystem::path& path);
+
+// sRGB encoding of a linear value in [0, 1].
+float linearToSrgb(float linear);
+
+}  // namespace cloudlut::render

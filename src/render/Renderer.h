@@ -1,0 +1,96 @@
+#pragma once
+// The particle renderer (seed §4.4, §5.4): each particle's bounding box is rasterised, the
+// fragment shader intersects the view ray with the ellipsoid and shades it from the tables;
+// particles are sorted back to front on the CPU and alpha-blended.
+//
+// Shading of one particle along one ray (particle space, unit-sphere units; DESIGN.md):
+//   S, v   entry point and unit direction of the ray mapped into the particle's unit sphere;
+//   l      the world sun direction mapped by the particle's inverse transform, renormalised;
+//   τ      = ρ · σ · L · T̄, L = 2 cos θv the chord, T̄ the optical-depth table's mean density,
+//          σ = extinction_per_m · radius_m of the optical-depth table. The particle's size in
+//          the world does not enter: every particle is the reference particle of optical
+//          radius σ·ρ (to make a particle of radius r optically as thick as a reference
+//          particle of radius R would be, give it ρ·r/R);
+//   single = P1(cos θ) · L1(S, v, l, ρ·T̄), P1 the single table's "first_phase", cos θ the
+//          world-space scattering angle (dir · sun; equal to v·l unless the particle is
+//          non-uniformly scaled);
+//   multiple = LM(S, v, l, ρ);
+//   ambient  = sky · (1 − e^{−τ}) · f(d), f(d) = 1 − kAmbientEdgeDarkening · d, d the
+//          distance to the first matter as a fraction of the chord (table channel 1): rays
+//          that meet matter at once (creases, cores) take the full sky light, rays that
+//          graze a particle's thin rim take half of it;
+//   radiance = sunColor · sunlight · (single + multiple) + ambient, sunlight = 1 for now.
+// Blending back to front: C ← radiance + e^{−τ}·C, T ← e^{−τ}·T.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/LutIo.h"
+#include "render/GlContext.h"
+#include "render/Scene.h"
+
+namespace cloudlut::render {
+
+enum Term : unsigned { kTermSingle = 1, kTermMultiple = 2, kTermAmbient = 4, kAllTerms = 7 };
+
+inline constexpr float kAmbientEdgeDarkening = 0.5f;
+// Pixels whose closest particle is more transparent than this carry no distance.
+inline constexpr float kMinOpacityForDistance = 1.0f / 256.0f;
+inline constexpr int kMaxImageSide = 16384;
+
+struct RenderSettings {
+  int width = 640;
+  int height = 360;
+  View view;
+  unsigned terms = kAllTerms;
+};
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  // Row 0 is the top row. Per pixel: linear radiance R, G, B (per unit sun irradiance, sr⁻¹,
+  // times the sun colour) and A = 1 − transmittance of all the particles.
+  std::vector<float> rgba;
+  // Distance from the eye to the first matter of the closest particle at least
+  // kMinOpacityForDistance opaque; +infinity where there is none.
+  std::vector<float> distance;
+
+  const float* pixel(int x, int y) const { return rgba.data() + 4 * (static_cast<std::size_t>(y) * width + x); }
+  float distanceAt(int x, int y) const { return distance[static_cast<std::size_t>(y) * width + x]; }
+  // Samples that are NaN or infinite in rgba (distance may hold +infinity by design).
+  std::size_t nonFiniteCount() const;
+};
+
+// UsageError unless 1 ≤ width, height ≤ kMaxImageSide and the buffers of such an image fit in
+// the memory this machine can spare.
+void checkImageSize(long long width, long long height);
+
+struct RenderStats {
+  double uploadSeconds = 0;   // particle buffer upload
+  double renderSeconds = 0;   // draw + glFinish
+  double readbackSeconds = 0;
+};
+
+class Renderer {
+ public:
+  // Uses the set's "optical_depth", "single_scattering" and "multiple_scattering" tables
+  // (FileError naming the directory when one is missing or unusable) and uploads them as 3D
+  // textures in their file layout. The context must stay alive and current.
+  Renderer(GlContext& context, const io::LutSet& luts);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  Image render(const std::vector<Particle>& particles, const RenderSettings& settings,
+               RenderStats* stats = nullptr);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Particles sorted back to front: decreasing distance from `eye` to the centre (ties keep
+// their order). Returns indices into `particles`.
+std::vector<std::size_t> backToFrontOrder(const std::vector<Particle>& particles, const glm::vec3& eye);
+
+}  // namespace cloudlut::render

@@ -1,0 +1,273 @@
+#include "render/Scene.h"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/Errors.h"
+
+namespace cloudlut::render {
+
+glm::mat3 Particle::toWorld() const {
+  const glm::mat3 r = glm::mat3_cast(rotation);
+  return glm::mat3(r[0] * radii.x, r[1] * radii.y, r[2] * radii.z);
+}
+
+glm::mat3 Particle::toParticle() const {
+  // (R · D)⁻¹ = D⁻¹ · Rᵀ: row k of the result is column k of R divided by radii[k].
+  const glm::mat3 rt = glm::transpose(glm::mat3_cast(rotation));
+  glm::mat3 m;
+  for (int c = 0; c < 3; ++c)
+    m[c] = glm::vec3(rt[c].x / radii.x, rt[c].y / radii.y, rt[c].z / radii.z);
+  return m;
+}
+
+glm::quat quatFromEulerDegrees(const glm::vec3& degrees) {
+  const glm::vec3 r = glm::radians(degrees);
+  const glm::quat qx = glm::angleAxis(r.x, glm::vec3(1, 0, 0));
+  const glm::quat qy = glm::angleAxis(r.y, glm::vec3(0, 1, 0));
+  const glm::quat qz = glm::angleAxis(r.z, glm::vec3(0, 0, 1));
+  return glm::normalize(qz * qy * qx);
+}
+
+namespace {
+
+// Field-level validation with messages of the form "<source>: <field>: <problem>".
+class Validator {
+ public:
+  explicit Validator(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+    throw FileError(source_, field + ": " + problem);
+  }
+
+  void requireObject(const nlohmann::json& j, const std::string& field) const {
+    if (!j.is_object()) fail(field, "expected a JSON object");
+  }
+
+  // Rejects keys not in `allowed` (catches typos such as "centre").
+  void onlyKeys(const nlohmann::json& j, const std::string& field,
+                const std::set<std::string>& allowed) const {
+    for (const auto& item : j.items()) {
+      if (allowed.count(item.key())) continue;
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      fail(field.empty() ? item.key() : field + "." + item.key(),
+           "unknown field (expected one of: " + list + ")");
+    }
+  }
+
+  float finiteNumber(const nlohmann::json& j, const std::string& field, const char* expected) const {
+    if (!j.is_number()) fail(field, expected);
+    const double v = j.get<double>();
+    if (!std::isfinite(v) || std::abs(v) > 1e30) fail(field, expected);
+    return static_cast<float>(v);
+  }
+
+  float positive(const nlohmann::json& j, const std::string& field) const {
+    const float v = finiteNumber(j, field, "expected a positive number");
+    if (!(v > 0.0f)) fail(field, "expected a positive number");
+    return v;
+  }
+
+  glm::vec3 vec3(const nlohmann::json& j, const std::string& field) const {
+    const char* expected = "expected 3 numbers";
+    if (!j.is_array() || j.size() != 3) fail(field, expected);
+    return {finiteNumber(j[0], field, expected), finiteNumber(j[1], field, expected),
+            finiteNumber(j[2], field, expected)};
+  }
+
+  glm::vec3 color(const nlohmann::json& j, const std::string& field) const {
+    const char* expected = "expected 3 non-negative numbers";
+    if (!j.is_array() || j.size() != 3) fail(field, expected);
+    glm::vec3 c;
+    for (int k = 0; k < 3; ++k) {
+      c[k] = finiteNumber(j[k], field, expected);
+      if (c[k] < 0.0f) fail(field, expected);
+    }
+    return c;
+  }
+
+  glm::vec3 nonZeroVec3(const nlohmann::json& j, const std::string& field) const {
+    const glm::vec3 v = vec3(j, field);
+    if (!(glm::length(v) > 1e-12f)) fail(field, "expected 3 numbers, not all zero");
+    return v;
+  }
+
+ private:
+  std::string source_;
+};
+
+Particle parseParticle(const Validator& check, const nlohmann::json& j, const std::string& field) {
+  check.requireObject(j, field);
+  check.onlyKeys(j, field, {"center", "radii", "quaternion", "euler_deg", "density"});
+  Particle p;
+  if (!j.contains("center")) check.fail(field + ".center", "missing (expected 3 numbers)");
+  p.center = check.vec3(j["center"], field + ".center");
+  if (!j.contains("radii")) check.fail(field + ".radii", "missing (expected 3 positive numbers or one positive number)");
+  const nlohmann::json& r = j["radii"];
+  const std::string rf = field + ".radii";
+  const char* rExpected = "expected 3 positive numbers (or one positive number)";
+  if (r.is_number()) {
+    const float v = check.finiteNumber(r, rf, rExpected);
+    if (!(v > 0.0f)) check.fail(rf, rExpected);
+    p.radii = glm::vec3(v);
+  } else {
+    if (!r.is_array() || r.size() != 3) check.fail(rf, rExpected);
+    for (int k = 0; k < 3; ++k) {
+      p.radii[k] = check.finiteNumber(r[k], rf, rExpected);
+      if (!(p.radii[k] > 0.0f)) check.fail(rf, rExpected);
+    }
+  }
+  if (std::max({p.radii.x, p.radii.y, p.radii.z}) > 1e6f * std::min({p.radii.x, p.radii.y, p.radii.z}))
+    check.fail(rf, "radii differ by more than a factor of 10^6");
+  if (j.contains("quaternion") && j.contains("euler_deg"))
+    check.fail(field, "give either \"quaternion\" or \"euler_deg\", not both");
+  if (j.contains("quaternion")) {
+    const std::string qf = field + ".quaternion";
+    const char* qExpected = "expected 4 numbers [w, x, y, z], not all zero";
+    const nlohmann::json& q = j["quaternion"];
+    if (!q.is_array() || q.size() != 4) check.fail(qf, qExpected);
+    glm::quat value;
+    value.w = check.finiteNumber(q[0], qf, qExpected);
+    value.x = check.finiteNumber(q[1], qf, qExpected);
+    value.y = check.finiteNumber(q[2], qf, qExpected);
+    value.z = check.finiteNumber(q[3], qf, qExpected);
+    if (!(glm::length(value) > 1e-6f)) check.fail(qf, qExpected);
+    p.rotation = glm::normalize(value);
+  } else if (j.contains("euler_deg")) {
+    p.rotation = quatFromEulerDegrees(check.vec3(j["euler_deg"], field + ".euler_deg"));
+  }
+  if (j.contains("density")) p.density = check.positive(j["density"], field + ".density");
+  return p;
+}
+
+}  // namespace
+
+Scene parseScene(const nlohmann::json& document, const std::string& source) {
+  const Validator check(source);
+  if (!document.is_object()) check.fail("(document)", "expected a JSON object with a \"particles\" array");
+  check.onlyKeys(document, "", {"description", "camera", "sun", "sky", "particles"});
+  Scene scene;
+  if (document.contains("description") && !document["description"].is_string())
+    check.fail("description", "expected a string");
+  if (document.contains("camera")) {
+    const nlohmann::json& c = document["camera"];
+    check.requireObject(c, "camera");
+    check.onlyKeys(c, "camera", {"eye", "target", "up", "fov_deg"});
+    if (c.contains("eye")) scene.view.eye = check.vec3(c["eye"], "camera.eye");
+    if (c.contains("target")) scene.view.target = check.vec3(c["target"], "camera.target");
+    if (c.contains("up")) scene.view.up = check.nonZeroVec3(c["up"], "camera.up");
+    if (c.contains("fov_deg")) {
+      const float fov = check.finiteNumber(c["fov_deg"], "camera.fov_deg", "expected a number of degrees in (0, 179]");
+      if (!(fov > 0.0f && fov <= 179.0f)) check.fail("camera.fov_deg", "expected a number of degrees in (0, 179]");
+      scene.view.fovDeg = fov;
+    }
+  }
+  if (document.contains("sun")) {
+    const nlohmann::json& s = document["sun"];
+    check.requireObject(s, "sun");
+    check.onlyKeys(s, "sun", {"direction", "color"});
+    if (s.contains("direction")) scene.view.sunDirection = check.nonZeroVec3(s["direction"], "sun.direction");
+    if (s.contains("color")) scene.view.sunColor = check.color(s["color"], "sun.color");
+  }
+  if (document.contains("sky")) {
+    const nlohmann::json& s = document["sky"];
+    check.requireObject(s, "sky");
+    check.onlyKeys(s, "sky", {"color"});
+    if (s.contains("color")) scene.view.skyColor = check.color(s["color"], "sky.color");
+  }
+  if (!document.contains("particles")) check.fail("particles", "missing (expected an array of particles)");
+  const nlohmann::json& ps = document["particles"];
+  if (!ps.is_array()) check.fail("particles", "expected an array of particles");
+  constexpr std::size_t kMaxParticles = 4u << 20;
+  if (ps.size() > kMaxParticles)
+    check.fail("particles", "more than " + std::to_string(kMaxParticles) + " particles");
+  scene.particles.reserve(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    scene.particles.push_back(parseParticle(check, ps[i], "particles[" + std::to_string(i) + "]"));
+  return scene;
+}
+
+Scene readScene(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw FileError(path.string(), "missing (no such scene file)");
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) throw FileError(path.string(), "cannot be read");
+  const nlohmann::json document = nlohmann::json::parse(text.str(), nullptr, false);
+  if (document.is_discarded()) throw FileError(path.string(), "invalid JSON");
+  return parseScene(document, path.string());
+}
+
+View resolveView(const Scene& scene, const ViewSettings& commandLine) {
+  const auto pick = [](const auto& cli, const auto& file, const auto& fallback) {
+    return cli ? *cli : file ? *file : fallback;
+  };
+  View view;
+  const ViewSettings& f = scene.view;
+  view.camera.fovDeg = pick(commandLine.fovDeg, f.fovDeg, view.camera.fovDeg);
+  if (!(view.camera.fovDeg > 0.0f && view.camera.fovDeg <= 179.0f))
+    throw UsageError("--fov: expected degrees in (0, 179]");
+  view.camera.up = pick(commandLine.up, f.up, view.camera.up);
+
+  // Default framing: the bounding sphere of the particles.
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Particle& p : scene.particles) {
+    const float r = std::max({p.radii.x, p.radii.y, p.radii.z});
+    lo = glm::min(lo, p.center - glm::vec3(r));
+    hi = glm::max(hi, p.center + glm::vec3(r));
+  }
+  glm::vec3 centre(0.0f);
+  float radius = 1.0f;
+  if (!scene.particles.empty()) {
+    centre = 0.5f * (lo + hi);
+    radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
+  }
+  view.camera.target = pick(commandLine.target, f.target, centre);
+  const float distance = 1.1f * radius / std::sin(0.5f * glm::radians(view.camera.fovDeg));
+  view.camera.eye = pick(commandLine.eye, f.eye,
+                         view.camera.target + distance * glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f)));
+  const glm::vec3 forward = view.camera.target - view.camera.eye;
+  if (!(glm::length(forward) > 1e-6f * std::max(1.0f, glm::length(view.camera.eye))))
+    throw UsageError("camera: eye and target coincide (camera.eye/camera.target or --eye/--target)");
+  if (!(glm::length(glm::cross(glm::normalize(forward), glm::normalize(view.camera.up))) > 1e-4f))
+    throw UsageError("camera: up is parallel to the view direction (camera.up)");
+
+  const glm::vec3 sun = pick(commandLine.sunDirection, f.sunDirection, glm::vec3(0.4f, 0.8f, 0.45f));
+  if (!(glm::length(sun) > 1e-12f)) throw UsageError("--sun: the direction toward the sun must not be zero");
+  view.lighting.sunDirection = glm::normalize(sun);
+  view.lighting.sunColor = pick(commandLine.sunColor, f.sunColor, view.lighting.sunColor);
+  view.lighting.skyColor = pick(commandLine.skyColor, f.skyColor, view.lighting.skyColor);
+  return view;
+}
+
+CameraFrame::CameraFrame(const Camera& camera, int width, int height)
+    : eye_(camera.eye),
+      forward_(glm::normalize(camera.target - camera.eye)),
+      right_(glm::normalize(glm::cross(forward_, camera.up))),
+      up_(glm::cross(right_, forward_)),
+      tanHalfFov_(std::tan(0.5f * glm::radians(camera.fovDeg))),
+      aspect_(static_cast<float>(width) / static_cast<float>(height)),
+      width_(width),
+      height_(height) {}
+
+glm::vec3 CameraFrame::rayDirection(float px, float py) const {
+  const float x = (2.0f * px / static_cast<float>(width_) - 1.0f) * tanHalfFov_ * aspect_;
+  const float y = (1.0f - 2.0f * py / static_cast<float>(height_)) * tanHalfFov_;
+  return glm::normalize(forward_ + x * right_ + y * up_);
+}
+
+glm::mat4 CameraFrame::viewMatrix() const { return glm::lookAt(eye_, eye_ + forward_, up_); }
+
+glm::mat4 CameraFrame::projectionMatrix(float nearPlane, float farPlane) const {
+  return glm::perspective(2.0f * std::atan(tanHalfFov_), aspect_, nearPlane, farPlane);
+}
+
+}  // namespace cloudlut::render

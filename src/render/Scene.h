@@ -1,0 +1,100 @@
+#pragma once
+// A particle scene: ellipsoidal particles plus, optionally, the camera and the light.
+// The JSON schema is specified in docs/SCENE_FORMAT.md; readScene validates every field and
+// throws cloudlut::FileError whose message names the file and the offending field, e.g.
+// "scene.json: particles[3].radii: expected 3 positive numbers (or one positive number)".
+//
+// World space is right-handed with +y up (unless camera.up says otherwise); lengths are in any
+// unit as long as all of them use the same one.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+namespace cloudlut::render {
+
+// One particle: the unit sphere mapped to the world by x = center + R · diag(radii) · p.
+struct Particle {
+  glm::vec3 center{0.0f};
+  glm::vec3 radii{1.0f};                         // semi-axes along the particle's own x, y, z
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};    // unit quaternion (w, x, y, z)
+  float density = 1.0f;                          // density scale ρ (dimensionless)
+
+  // World ← particle (unit sphere) linear part R · diag(radii), and its inverse.
+  glm::mat3 toWorld() const;
+  glm::mat3 toParticle() const;
+};
+
+// Quaternion of the Euler angles (degrees) applied about x first, then y, then z (fixed axes):
+// R = Rz · Ry · Rx.
+glm::quat quatFromEulerDegrees(const glm::vec3& degrees);
+
+// The camera and light fields a scene file or the command line may set; unset fields fall
+// back on the scene file, then on the defaults (see resolveView).
+struct ViewSettings {
+  std::optional<glm::vec3> eye, target, up;
+  std::optional<float> fovDeg;                   // vertical field of view, degrees
+  std::optional<glm::vec3> sunDirection;         // toward the sun (normalised on use)
+  std::optional<glm::vec3> sunColor, skyColor;
+};
+
+struct Scene {
+  std::vector<Particle> particles;
+  ViewSettings view;
+};
+
+// Parses and validates a scene document; `source` names it in error messages.
+Scene parseScene(const nlohmann::json& document, const std::string& source);
+
+// Reads and validates a scene file (FileError when missing, not JSON, or malformed).
+Scene readScene(const std::filesystem::path& path);
+
+struct Camera {
+  glm::vec3 eye{0.0f, 0.0f, 5.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fovDeg = 45.0f;
+};
+
+struct Lighting {
+  glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};  // unit, toward the sun
+  glm::vec3 sunColor{1.0f};                  // sun irradiance per channel
+  glm::vec3 skyColor{0.08f, 0.12f, 0.2f};    // sky radiance per channel (ambient and background)
+};
+
+struct View {
+  Camera camera;
+  Lighting lighting;
+};
+
+// Defaults ← scene file ← command line, field by field. Without an eye or target the camera
+// frames the particles' bounding sphere (target at its centre, eye above and behind it, on
+// +z). Throws UsageError for an unusable combination (eye = target, up parallel to the view
+// direction, zero sun direction).
+View resolveView(const Scene& scene, const ViewSettings& commandLine);
+
+// The pinhole camera of an image: ray directions and the matching OpenGL matrices.
+// Pixel (x, y) counts from the top-left corner; its centre is (x + 0.5, y + 0.5).
+class CameraFrame {
+ public:
+  CameraFrame(const Camera& camera, int width, int height);
+  const glm::vec3& eye() const { return eye_; }
+  glm::vec3 forward() const { return forward_; }
+  // Unit direction of the ray through the image point (px, py) in pixel units.
+  glm::vec3 rayDirection(float px, float py) const;
+  glm::mat4 viewMatrix() const;
+  glm::mat4 projectionMatrix(float nearPlane, float farPlane) const;
+
+ private:
+  glm::vec3 eye_, forward_, right_, up_;
+  float tanHalfFov_, aspect_;
+  int width_, height_;
+};
+
+}  // namespace cloudlut::render

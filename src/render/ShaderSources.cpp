@@ -1,0 +1,52 @@
+#include "render/ShaderSources.h"
+
+#include <map>
+#include <vector>
+
+#include "render/EmbeddedShaders.h"
+#include "render/GlContext.h"
+
+namespace cloudlut::render {
+namespace {
+
+const std::vector<std::string> kVertexFiles = {"particle_common.glsl", "particle.vert.glsl"};
+const std::vector<std::string> kFragmentFiles = {"cloudlut_geometry.glsl", "cloudlut_phase.glsl",
+                                                 "cloudlut_sampling.glsl", "particle_common.glsl",
+                                                 "particle.frag.glsl"};
+
+std::string assemble(const std::vector<std::string>& files) {
+  // CLOUDLUT_FN is empty in GLSL (the shared files also default it themselves).
+  std::string source = "#version 450 core\n#define CLOUDLUT_FN\n";
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    source += "#line 1 " + std::to_string(i + 1) + "\n";
+    source += embeddedShaderFile(files[i]);
+    source += "\n";
+  }
+  return source;
+}
+
+}  // namespace
+
+const std::string& embeddedShaderFile(const std::string& name) {
+  static const std::map<std::string, std::string> files = [] {
+    std::map<std::string, std::string> m;
+    for (const auto& f : embedded::kShaderFiles) m.emplace(f.name, f.source);
+    return m;
+  }();
+  const auto it = files.find(name);
+  if (it == files.end()) throw GlError("shader file '" + name + "' was not embedded in this build");
+  return it->second;
+}
+
+std::string particleVertexSource() { return assemble(kVertexFiles); }
+std::string particleFragmentSource() { return assemble(kFragmentFiles); }
+
+std::string shaderFileLegend(bool fragment) {
+  const auto& files = fragment ? kFragmentFiles : kVertexFiles;
+  std::string legend = "source string 0 is the preamble";
+  for (std::size_t i = 0; i < files.size(); ++i)
+    legend += ", " + std::to_string(i + 1) + " is " + files[i];
+  return legend;
+}
+
+}  // namespace cloudlut::render

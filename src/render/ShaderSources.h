@@ -1,0 +1,20 @@
+#pragma once
+// The renderer's GLSL, embedded in the binary at build time (EmbedShaders.cmake): the shared
+// lut_formats/glsl files verbatim plus src/render/shaders.
+#include <string>
+
+namespace cloudlut::render {
+
+// The embedded file of that name (e.g. "cloudlut_sampling.glsl"); throws GlError if absent.
+const std::string& embeddedShaderFile(const std::string& name);
+
+// Complete sources of the particle program: "#version 450 core", then each file preceded by
+// a #line directive whose source-string number is its position in the list below, so that
+// compiler messages can be traced back ("0:LINE" → file 0 ...).
+std::string particleVertexSource();
+std::string particleFragmentSource();
+
+// "file number N is NAME" for a program's sources, for error messages.
+std::string shaderFileLegend(bool fragment);
+
+}  // namespace cloudlut::render

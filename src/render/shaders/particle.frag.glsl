@@ -1,0 +1,90 @@
+// particle.frag.glsl — shades one particle along one view ray with the tables (seed §4.4, §5.4).
+// Preceded by cloudlut_geometry.glsl, cloudlut_phase.glsl, cloudlut_sampling.glsl (verbatim,
+// from lut_formats/glsl) and particle_common.glsl.
+//
+// Output 0 (RGBA32F, blended ONE/SRC_ALPHA for colour, ZERO/SRC_ALPHA for alpha):
+//   rgb = radiance scattered toward the camera, a = transmittance of the particle;
+// output 1 (R32F, blended with MIN): distance from the eye to the particle's first matter.
+
+uniform vec3 uEye;
+uniform vec3 uSunDirection;  // world, unit, toward the sun
+uniform vec3 uSunColor;
+uniform vec3 uSkyColor;
+uniform int uTerms;          // bit 0 single, bit 1 multiple, bit 2 ambient
+
+uniform sampler3D uOpticalDepth;
+uniform sampler3D uSingle;
+uniform sampler3D uMultiple;
+uniform vec4 uOpticalDepthDims;  // (N0, N1, N2, N3)
+uniform vec4 uSingleDims;
+uniform vec4 uMultipleDims;
+uniform vec2 uSingleDensityRange;    // log2 rho at the first and last node of axis 3
+uniform vec2 uMultipleDensityRange;
+uniform float uUnitOpticalRadius;    // sigma = extinction * radius of the optical-depth table
+uniform int uFirstPhaseKind;         // phaseFunction() kind and parameter of the single table
+uniform float uFirstPhaseParam;
+uniform float uAmbientEdgeDarkening; // f(d) = 1 - k * d, d = distance to first matter / chord
+uniform float uMinOpacityForDistance;
+uniform float uNoDistance;
+
+in vec3 vWorld;
+flat in int vParticle;
+
+layout(location = 0) out vec4 oColor;
+layout(location = 1) out float oDistance;
+
+void main() {
+  GpuParticle p = particles[vParticle];
+  mat3 toParticle = mat3(p.toParticle[0].xyz, p.toParticle[1].xyz, p.toParticle[2].xyz);
+  float rho = p.centerDensity.w;
+
+  // The view ray in world space (unit direction) and in particle space (unnormalised, so that
+  // the ray parameter t is the world distance from the eye).
+  vec3 dir = normalize(vWorld - uEye);
+  vec3 o = toParticle * (uEye - p.centerDensity.xyz);
+  vec3 d = toParticle * dir;
+
+  // |o + t d|^2 = 1, in the cancellation-free form.
+  float a = dot(d, d);
+  float b = dot(o, d);
+  float c = dot(o, o) - 1.0;
+  float disc = b * b - a * c;
+  if (c <= 0.0 || b >= 0.0 || disc <= 0.0) discard;  // eye inside, sphere behind, or a miss
+  float q = -b + sqrt(disc);
+  float tEnter = c / q;
+  float tExit = q / a;
+
+  vec3 S = normalize(o + tEnter * d);
+  vec3 v = normalize(d);
+  vec3 l = normalize(toParticle * uSunDirection);
+
+  // Optical depth (seed §4.4): tau = rho * sigma * L * mean density, L in unit-sphere units.
+  vec2 od = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(S, v), uOpticalDepthDims).xy;
+  float chord = chordLength(S, v);
+  float tau = rho * uUnitOpticalRadius * chord * od.x;
+  float transmittance = exp(-tau);
+
+  // Single scattering: the homogeneous sphere of the ray's mean density, times the phase
+  // function of the physical (world-space) scattering angle. Multiple: the sphere of density rho.
+  float single = 0.0;
+  if ((uTerms & 1) != 0) {
+    vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleDensityRange.x, uSingleDensityRange.y);
+    single = phaseFunction(uFirstPhaseKind, dot(dir, uSunDirection), uFirstPhaseParam) *
+             cloudlutSample4D(uSingle, x, uSingleDims).x;
+  }
+  float multiple = 0.0;
+  if ((uTerms & 2) != 0) {
+    vec4 x = scatteringAxes(S, v, l, rho, uMultipleDensityRange.x, uMultipleDensityRange.y);
+    multiple = cloudlutSample4D(uMultiple, x, uMultipleDims).x;
+  }
+  // Ambient: sky radiance, scaled by the opacity and by f(distance to the first matter).
+  vec3 ambient = vec3(0.0);
+  if ((uTerms & 4) != 0)
+    ambient = uSkyColor * (1.0 - transmittance) * (1.0 - uAmbientEdgeDarkening * clamp(od.y, 0.0, 1.0));
+
+  const float sunlight = 1.0;  // sunlight reaching the particle: occlusion comes with Renderer II
+  oColor = vec4(uSunColor * (sunlight * (single + multiple)) + ambient, transmittance);
+  oDistance = 1.0 - transmittance >= uMinOpacityForDistance
+                  ? tEnter + clamp(od.y, 0.0, 1.0) * (tExit - tEnter)
+                  : uNoDistance;
+}
