@@ -84,7 +84,7 @@ int runRender(int argc, char** argv) {
     ("sun", "direction toward the sun x,y,z (overrides the scene)", cxxopts::value<std::string>())
     ("sun-color", "sun irradiance r,g,b (overrides the scene; default 1,1,1)", cxxopts::value<std::string>())
     ("sky-color", "sky radiance r,g,b: ambient light and PNG background (overrides the scene)", cxxopts::value<std::string>())
-    ("exposure", "PNG tone mapping: 1 - exp(-exposure * radiance)", cxxopts::value<double>()->default_value("4"))
+    ("exposure", "PNG tone mapping: 1 - exp(-exposure * radiance)", cxxopts::value<double>()->default_value("5"))
     ("terms", "lighting terms: single, multiple, ambient, all (comma-separated)", cxxopts::value<std::string>()->default_value("all"))
     ("quiet", "print nothing on success");
   cxxopts::ParseResult args;

@@ -57,30 +57,55 @@ struct PathSums {
 };
 
 // One backward path from S along v; adds its per-order tallies to `sums`.
+//
+// Order k+1 is estimated at vertex k by two techniques combined with the balance heuristic:
+//   A: the path's own continuation (direction d' drawn from PM about d), then next-event
+//      estimation at the next vertex with P1(l·d');
+//   B: a direction drawn from P1 about l (the sun's forward peak), a forced free flight along
+//      it and next-event estimation there, weighted by PM(d·d'').
+// Their direction pdfs are PM(d·ω) and P1(l·ω); weights pdf / (pdfA + pdfB). Sharp P1 peaks
+// (g = 0.9, Jendersie–d'Eon) are thereby sampled instead of hit by chance.
 void tracePath(const SphereMcQuery& q, const glm::dvec3& S, const glm::dvec3& v,
                const glm::dvec3& l, const SphereMcSettings& st, McRng& rng, PathSums& sums) {
   const double sigma = q.sigma;
   glm::dvec3 x = S, d = v;
-  double w = 1.0;
+  double w = 1.0, misA = 1.0;
   double tally[3] = {0, 0, 0};
   long long vertices = 0;
+  const auto add = [&](int order, double c) {
+    if (order == 1) tally[0] += c;
+    else {
+      if (order <= st.splitOrder) tally[1] += c;
+      tally[2] += c;
+    }
+  };
+  // Forced free flight from p along dir: returns the collision point, multiplies the weight.
+  const auto fly = [&](const glm::dvec3& p, const glm::dvec3& dir, double chord, double& weight) {
+    const double pInt = -std::expm1(-sigma * chord);
+    weight *= pInt;
+    if (!(pInt > 0.0)) return p;
+    const double t = std::min(-std::log1p(-rng.next() * pInt) / sigma, chord);
+    glm::dvec3 y = p + t * dir;
+    const double r2 = glm::dot(y, y);
+    if (r2 > 1.0) y /= std::sqrt(r2);
+    return y;
+  };
   for (int k = 1; k < 10000000; ++k) {
     const double chord = k == 1 ? std::max(-2.0 * glm::dot(S, v), 0.0) : distanceToBoundary(x, d);
-    const double pInt = -std::expm1(-sigma * chord);
-    if (!(pInt > 0.0)) break;
-    w *= pInt;
-    const double t = std::min(-std::log1p(-rng.next() * pInt) / sigma, chord);
-    x += t * d;
+    x = fly(x, d, chord, w);
+    if (!(w > 0.0)) break;
     ++vertices;
-    const double r2 = glm::dot(x, x);
-    if (r2 > 1.0) x /= std::sqrt(r2);
     // Next-event estimation: sunlight scattered for the first time here, toward -d.
-    const double dSun = distanceToBoundary(x, l);
-    const double c = w * phaseValue(st.first, glm::dot(l, d)) * std::exp(-sigma * dSun);
-    if (k == 1) tally[0] += c;
-    else {
-      if (k <= st.splitOrder) tally[1] += c;
-      tally[2] += c;
+    add(k, misA * w * phaseValue(st.first, glm::dot(l, d)) * std::exp(-sigma * distanceToBoundary(x, l)));
+    // Technique B for order k + 1.
+    {
+      const glm::dvec3 dB = rotateAbout(l, samplePhaseCosine(st.first, rng), rng.next());
+      const double pmB = phaseValue(st.later, glm::dot(d, dB));
+      const double p1B = phaseValue(st.first, glm::dot(l, dB));
+      double wB = w;
+      const glm::dvec3 xB = fly(x, dB, distanceToBoundary(x, dB), wB);
+      if (wB > 0.0 && pmB + p1B > 0.0)
+        add(k + 1, wB * pmB * std::exp(-sigma * distanceToBoundary(xB, l)) * p1B / (pmB + p1B));
     }
     // Russian roulette.
     if (w < st.rouletteWeight) {
@@ -88,9 +113,13 @@ void tracePath(const SphereMcQuery& q, const glm::dvec3& S, const glm::dvec3& v,
       if (rng.next() >= survive) break;
       w = st.rouletteWeight;
     }
-    // Continue backward: the light arriving here came from direction d' with cos(d, d') = mu.
-    const double mu = samplePhaseCosine(st.later, rng);
-    d = rotateAbout(d, mu, rng.next());
+    // Technique A: continue backward; the light arriving here came from direction d' with
+    // cos(d, d') drawn exactly from the later phase function.
+    const glm::dvec3 dn = rotateAbout(d, samplePhaseCosine(st.later, rng), rng.next());
+    const double pmA = phaseValue(st.later, glm::dot(d, dn));
+    const double p1A = phaseValue(st.first, glm::dot(l, dn));
+    misA = pmA + p1A > 0.0 ? pmA / (pmA + p1A) : 1.0;
+    d = dn;
   }
   for (int i = 0; i < 3; ++i) {
     sums.s[i] += tally[i];

@@ -13,8 +13,10 @@
 // inside the sphere (truncated-exponential free flight, weight × (1 − e^{-σ·chord})); every
 // vertex k connects to the sun (next-event estimation: P1 × closed-form sun transmittance),
 // which tallies order k; the path continues with a direction sampled exactly from the later
-// phase function (rejection sampling, so the continuation weight stays 1). Russian roulette
-// ends paths of small weight without bias.
+// phase function (rejection sampling). Order k+1 is also estimated from vertex k along a
+// direction sampled from P1 about l, and the two techniques are combined by multiple
+// importance sampling, so the sharp sunward peak of P1 is sampled rather than hit by chance.
+// Russian roulette ends paths of small weight without bias.
 //
 // Determinism: the paths of a query are split into fixed blocks of kPathsPerBlock; block b of
 // row r draws from a generator seeded by (seed, r, b), and the block sums are combined in

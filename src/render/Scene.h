@@ -65,7 +65,7 @@ struct Camera {
 struct Lighting {
   glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};  // unit, toward the sun
   glm::vec3 sunColor{1.0f};                  // sun irradiance per channel
-  glm::vec3 skyColor{0.08f, 0.12f, 0.2f};    // sky radiance per channel (ambient and background)
+  glm::vec3 skyColor{0.05f, 0.08f, 0.15f};   // sky radiance per channel (ambient and background)
 };
 
 struct View {

@@ -1,0 +1,204 @@
+// The renderer, in process, headless (OSMesa/llvmpipe): the small scene's silhouette, and one
+// particle's pixels against core/TableLookup (what `cloudlut query` computes) for the same rays.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include <glm/geometric.hpp>
+
+#include "CliRunner.h"
+#include "core/Glsl.h"
+#include "core/TableLookup.h"
+#include "render/GlContext.h"
+#include "render/Renderer.h"
+#include "render/Scene.h"
+#include "test_render_support.h"
+
+using namespace cloudlut;
+using namespace cloudlut::render;
+using namespace cloudlut::test;
+
+namespace {
+
+struct Hit {
+  bool hit = false;
+  float tEnter = 0, tExit = 0;
+  glm::vec3 S{0.0f}, v{0.0f};
+  float closest = 0;  // distance of the ray from the centre in particle space (1 = grazing)
+};
+
+// The ray (eye, unit dir) against the particle, scaled by `inflate`, in its unit-sphere space.
+Hit intersect(const Particle& p, const glm::vec3& eye, const glm::vec3& dir, float inflate = 1.0f) {
+  const glm::mat3 inv = p.toParticle();
+  const glm::vec3 o = inv * (eye - p.center) / inflate, d = inv * dir / inflate;
+  const double a = glm::dot(d, d), b = glm::dot(o, d), c = double(glm::dot(o, o)) - 1.0;
+  Hit h;
+  h.closest = static_cast<float>(std::sqrt(std::max(0.0, double(glm::dot(o, o)) - b * b / a)));
+  const double disc = b * b - a * c;
+  if (c <= 0 || b >= 0 || disc <= 0) return h;
+  const double q = -b + std::sqrt(disc);
+  h.hit = true;
+  h.tEnter = static_cast<float>(c / q);
+  h.tExit = static_cast<float>(q / a);
+  h.S = glm::normalize(o + h.tEnter * d);
+  h.v = glm::normalize(d);
+  return h;
+}
+
+float firstPhase(const Table4D& single, float mu) {
+  const auto phase = single.parameters().value("first_phase", nlohmann::json::object());
+  return glsl::phaseFunction(phase.value("kind", 2), mu, phase.value("param", 0.9f));
+}
+
+double relativeDifference(double value, double reference) {
+  return std::abs(value - reference) / std::max(std::abs(reference), 1e-12);
+}
+
+}  // namespace
+
+TEST_CASE("render: the small scene has the particles' silhouette, no NaN, and is not empty", "[render]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
+  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
+  REQUIRE(scene.particles.size() >= 5);
+
+  auto context = createHeadlessContext();
+  Renderer renderer(*context, luts);
+  RenderSettings settings;
+  settings.width = 128;
+  settings.height = 96;
+  settings.view = resolveView(scene, {});
+  const Image image = renderer.render(scene.particles, settings);
+  REQUIRE(image.width == 128);
+  REQUIRE(image.height == 96);
+  CHECK(image.nonFiniteCount() == 0);
+
+  const CameraFrame camera(settings.view.camera, image.width, image.height);
+  std::size_t covered = 0, cores = 0, outside = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const glm::vec3 dir = camera.rayDirection(float(x) + 0.5f, float(y) + 0.5f);
+      bool nearAny = false, inCore = false;
+      for (const Particle& p : scene.particles) {
+        nearAny = nearAny || intersect(p, camera.eye(), dir, 1.05f).hit;
+        inCore = inCore || intersect(p, camera.eye(), dir, 0.5f).hit;
+      }
+      const float* px = image.pixel(x, y);
+      if (px[3] > 0.0f) ++covered;
+      if (inCore) {
+        ++cores;
+        INFO("core pixel " << x << "," << y);
+        CHECK(px[3] > 0.05f);
+        CHECK(px[0] > 0.0f);
+        CHECK(std::isfinite(image.distanceAt(x, y)));
+      }
+      if (!nearAny) {
+        ++outside;
+        INFO("outside pixel " << x << "," << y);
+        CHECK(px[0] == 0.0f);
+        CHECK(px[1] == 0.0f);
+        CHECK(px[2] == 0.0f);
+        CHECK(px[3] == 0.0f);
+        CHECK(std::isinf(image.distanceAt(x, y)));
+      }
+    }
+  CHECK(cores > 500);
+  CHECK(outside > 2000);
+  CHECK(covered > static_cast<std::size_t>(image.width * image.height / 10));
+}
+
+TEST_CASE("render: one particle's pixels match core/TableLookup within 1%", "[render]") {
+  TempDir tmp;
+  const Table4D od = smallOpticalDepth(DensityModel::Noise);
+  const Table4D l1 = syntheticSingle(), lm = syntheticMultiple();
+  writeLutSet(tmp / "luts", {&od, &l1, &lm});
+  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  auto context = createHeadlessContext();
+  Renderer renderer(*context, luts);
+
+  // Sun colour red and sky colour green separate the terms: R = single + multiple,
+  // G = ambient, A = 1 - transmittance.
+  RenderSettings settings;
+  settings.width = 128;
+  settings.height = 96;
+  settings.view.camera = Camera{{0.7f, 1.1f, 6.5f}, {0.2f, -0.1f, 0.0f}, {0.0f, 1.0f, 0.0f}, 40.0f};
+  settings.view.lighting.sunDirection = glm::normalize(glm::vec3(0.3f, 0.8f, 0.5f));
+  settings.view.lighting.sunColor = {1.0f, 0.0f, 0.0f};
+  settings.view.lighting.skyColor = {0.0f, 1.0f, 0.0f};
+
+  struct Case {
+    const char* name;
+    Particle particle;
+  };
+  Particle sphere;
+  sphere.center = {0.3f, -0.2f, 0.1f};
+  sphere.radii = glm::vec3(1.6f);
+  sphere.rotation = quatFromEulerDegrees({20.0f, -35.0f, 50.0f});
+  sphere.density = 0.25f;
+  Particle ellipsoid = sphere;
+  ellipsoid.radii = {2.0f, 1.1f, 1.4f};
+  ellipsoid.density = 0.6f;
+  const Case cases[] = {{"rotated sphere, rho 0.25", sphere}, {"rotated ellipsoid, rho 0.6", ellipsoid}};
+
+  for (const Case& c : cases) {
+    INFO(c.name);
+    const Particle& p = c.particle;
+    const Image image = renderer.render({p}, settings);
+    REQUIRE(image.nonFiniteCount() == 0);
+    const CameraFrame camera(settings.view.camera, image.width, image.height);
+    const glm::vec3 sun = settings.view.lighting.sunDirection;
+    const glm::vec3 l = glm::normalize(p.toParticle() * sun);
+    double maxRadiance = 0, maxAmbient = 0, maxTransmittance = 0, maxDistance = 0;
+    int compared = 0, misses = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const glm::vec3 dir = camera.rayDirection(float(x) + 0.5f, float(y) + 0.5f);
+        const Hit h = intersect(p, camera.eye(), dir);
+        const float* px = image.pixel(x, y);
+        if (!h.hit) {
+          if (h.closest > 1.01f) {
+            CHECK(px[3] == 0.0f);
+            ++misses;
+          }
+          continue;
+        }
+        // "Not too thin to matter": chords longer than 0.2 radii and optical depth above 0.05.
+        const OpticalDepthSample s = lookupOpticalDepth(od, h.S, h.v, p.density);
+        if (s.chordLength < 0.2f || s.opticalDepth < 0.05f) continue;
+        const float single = firstPhase(l1, glm::dot(dir, sun)) *
+                             lookupScattering(l1, h.S, h.v, l, p.density * s.meanDensity);
+        const float multiple = lookupScattering(lm, h.S, h.v, l, p.density);
+        const float ambient = (1.0f - s.transmittance) * (1.0f - kAmbientEdgeDarkening * s.firstMatter);
+        const float distance = h.tEnter + s.firstMatter * (h.tExit - h.tEnter);
+        INFO("pixel " << x << "," << y << " tau " << s.opticalDepth);
+        maxRadiance = std::max(maxRadiance, relativeDifference(px[0], single + multiple));
+        maxAmbient = std::max(maxAmbient, relativeDifference(px[1], ambient));
+        maxTransmittance = std::max(maxTransmittance, relativeDifference(1.0 - px[3], s.transmittance));
+        maxDistance = std::max(maxDistance, relativeDifference(image.distanceAt(x, y), distance));
+        CHECK(px[2] == 0.0f);
+        ++compared;
+      }
+    std::printf("[render] %s: %d pixels compared; max relative difference: radiance %.2e, ambient %.2e, "
+                "transmittance %.2e, distance %.2e\n",
+                c.name, compared, maxRadiance, maxAmbient, maxTransmittance, maxDistance);
+    CHECK(compared > 1000);
+    CHECK(misses > 1000);
+    CHECK(maxRadiance <= 0.01);
+    CHECK(maxAmbient <= 0.01);
+    CHECK(maxTransmittance <= 0.01);
+    CHECK(maxDistance <= 0.01);
+  }
+}
+
+TEST_CASE("render: particles are drawn back to front", "[render]") {
+  std::vector<Particle> ps(3);
+  ps[0].center = {0, 0, 0};
+  ps[1].center = {0, 0, -5};
+  ps[2].center = {0, 0, 3};
+  const auto order = backToFrontOrder(ps, {0, 0, 10});
+  CHECK(order == std::vector<std::size_t>{1, 0, 2});
+}

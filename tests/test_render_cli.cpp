@@ -1,0 +1,260 @@
+// `cloudlut render` end to end: PNG and EXR output, command-line overrides, and every bad input
+// (missing or corrupt tables, malformed scene fields, absurd sizes, bad options) giving one
+// clear line on stderr, the right exit code and nothing written.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+
+#include "CliRunner.h"
+#include "render/Scene.h"
+#include "test_render_support.h"
+
+using namespace cloudlut;
+using namespace cloudlut::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kScene = std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json";
+
+std::size_t lineCount(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// A render command line for `luts`, `scene` and `out` at 96×64 plus `extra`.
+std::string renderArgs(const fs::path& luts, const fs::path& scene, const fs::path& out, const std::string& extra = "") {
+  return "render --luts " + q(luts) + " --particles " + q(scene) + " --out " + q(out) + " --width 96 --height 64 " + extra;
+}
+
+bool hasTempFiles(const fs::path& dir) {
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(".tmp") != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("render CLI: PNG and EXR output of the small scene", "[render][cli]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts");
+  fs::create_directories(tmp / "img");
+
+  const CliResult png = runCli(renderArgs(tmp / "luts", kScene, tmp / "img" / "small.png"));
+  REQUIRE(png.exitCode == 0);
+  CHECK(png.err.empty());
+  const std::string bytes = readFile(tmp / "img" / "small.png");
+  REQUIRE(bytes.size() > 8);
+  CHECK(bytes.substr(1, 3) == "PNG");
+
+  const CliResult exr = runCli(renderArgs(tmp / "luts", kScene, tmp / "img" / "small.exr", "--quiet"));
+  REQUIRE(exr.exitCode == 0);
+  CHECK(exr.out.empty());
+  Imf::InputFile file((tmp / "img" / "small.exr").c_str());
+  const Imath::Box2i dw = file.header().dataWindow();
+  const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+  REQUIRE(w == 96);
+  REQUIRE(h == 64);
+  const char* names[] = {"R", "G", "B", "A", "Z"};
+  std::vector<std::vector<float>> channels(5, std::vector<float>(static_cast<std::size_t>(w * h)));
+  Imf::FrameBuffer frame;
+  for (int c = 0; c < 5; ++c) {
+    REQUIRE(file.header().channels().findChannel(names[c]) != nullptr);
+    frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(channels[c].data()), sizeof(float),
+                                      sizeof(float) * static_cast<std::size_t>(w)));
+  }
+  file.setFrameBuffer(frame);
+  file.readPixels(dw.min.y, dw.max.y);
+  std::size_t opaque = 0, empty = 0;
+  for (std::size_t i = 0; i < channels[3].size(); ++i) {
+    const float a = channels[3][i];
+    CHECK((a >= 0.0f && a <= 1.0f));
+    for (int c = 0; c < 3; ++c) CHECK(std::isfinite(channels[c][i]));
+    if (a > 0.5f) {
+      ++opaque;
+      CHECK(std::isfinite(channels[4][i]));
+      CHECK(channels[4][i] > 0.0f);
+    }
+    if (a == 0.0f) {
+      ++empty;
+      CHECK(std::isinf(channels[4][i]));
+    }
+  }
+  CHECK(opaque > 500);
+  CHECK(empty > 500);
+  CHECK_FALSE(hasTempFiles(tmp / "img"));
+
+  // Command-line camera overrides the scene's: from far away the cloud covers fewer pixels.
+  const CliResult far = runCli(renderArgs(tmp / "luts", kScene, tmp / "img" / "far.exr", "--quiet --eye=0,1.2,-60 --fov 30"));
+  REQUIRE(far.exitCode == 0);
+  Imf::InputFile farFile((tmp / "img" / "far.exr").c_str());
+  std::vector<float> alpha(static_cast<std::size_t>(w * h));
+  Imf::FrameBuffer farFrame;
+  farFrame.insert("A", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(alpha.data()), sizeof(float),
+                                  sizeof(float) * static_cast<std::size_t>(w)));
+  farFile.setFrameBuffer(farFrame);
+  farFile.readPixels(dw.min.y, dw.max.y);
+  const auto farOpaque = std::count_if(alpha.begin(), alpha.end(), [](float a) { return a > 0.5f; });
+  CHECK(farOpaque > 0);
+  CHECK(static_cast<std::size_t>(farOpaque) < opaque / 4);
+}
+
+TEST_CASE("render: the command line overrides the scene file, which overrides the defaults", "[render]") {
+  render::Scene scene = render::parseScene(nlohmann::json::parse(R"({
+      "camera": {"eye": [0, 0, 10], "fov_deg": 30},
+      "sun": {"direction": [0, 2, 0]},
+      "particles": [{"center": [1, 2, 3], "radii": 1}]})"), "inline");
+  render::ViewSettings cli;
+  cli.fovDeg = 60.0f;
+  cli.skyColor = glm::vec3(0.5f);
+  const render::View view = render::resolveView(scene, cli);
+  CHECK(view.camera.eye == glm::vec3(0, 0, 10));
+  CHECK(view.camera.target == glm::vec3(1, 2, 3));  // default: the particles' centre
+  CHECK(view.camera.fovDeg == 60.0f);
+  CHECK(view.lighting.sunDirection == glm::vec3(0, 1, 0));
+  CHECK(view.lighting.skyColor == glm::vec3(0.5f));
+  CHECK(view.lighting.sunColor == glm::vec3(1.0f));
+  cli.eye = glm::vec3(1, 2, 3);
+  CHECK_THROWS_AS(render::resolveView(scene, cli), UsageError);
+}
+
+TEST_CASE("render CLI: missing or corrupt tables are file errors naming the file", "[render][cli]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "good");
+  const fs::path out = tmp / "out.png";
+
+  // No LUT directory at all.
+  CliResult r = runCli(renderArgs(tmp / "nowhere", kScene, out));
+  CHECK(r.exitCode == 1);
+  CHECK(lineCount(r.err) == 1);
+  CHECK(r.err.find("manifest.json") != std::string::npos);
+
+  // A set without the multiple-scattering table.
+  {
+    const Table4D od = smallOpticalDepth(), l1 = syntheticSingle();
+    writeLutSet(tmp / "partial", {&od, &l1});
+  }
+  r = runCli(renderArgs(tmp / "partial", kScene, out));
+  CHECK(r.exitCode == 1);
+  CHECK(lineCount(r.err) == 1);
+  CHECK(r.err.find("multiple_scattering") != std::string::npos);
+
+  // A truncated and a bit-flipped optical-depth file.
+  const std::string bin = readFile(tmp / "good" / "optical_depth.bin");
+  std::string flipped = bin;
+  flipped[flipped.size() - 7] = static_cast<char>(flipped[flipped.size() - 7] ^ 0x21);
+  for (const std::string& bytes : {bin.substr(0, bin.size() / 2), flipped, std::string("not a table")}) {
+    fs::remove_all(tmp / "bad");
+    fs::copy(tmp / "good", tmp / "bad", fs::copy_options::recursive);
+    std::ofstream(tmp / "bad" / "optical_depth.bin", std::ios::binary | std::ios::trunc) << bytes;
+    r = runCli(renderArgs(tmp / "bad", kScene, out));
+    CHECK(r.exitCode == 1);
+    CHECK(lineCount(r.err) == 1);
+    CHECK(r.err.find("optical_depth.bin") != std::string::npos);
+  }
+  CHECK_FALSE(fs::exists(out));
+  CHECK_FALSE(hasTempFiles(tmp.path()));
+}
+
+TEST_CASE("render CLI: a malformed scene is a file error naming the field", "[render][cli]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts");
+  const fs::path out = tmp / "out.png";
+  const std::string ok = R"({"center": [0, 0, 0], "radii": 1})";
+  struct Bad {
+    std::string json, field;
+  };
+  const Bad bads[] = {
+      {"{\"particles\": [" + ok + ", {\"center\": [0, 0, 0], \"radii\": [1, -2, 1]}]}", "particles[1].radii"},
+      {"{\"particles\": [" + ok + ", " + ok + ", " + ok + ", {\"center\": [0, 0, 0], \"radii\": [1, 2]}]}", "particles[3].radii"},
+      {R"({"particles": [{"center": [0, 0], "radii": 1}]})", "particles[0].center"},
+      {R"({"particles": [{"center": [0, "x", 0], "radii": 1}]})", "particles[0].center"},
+      {R"({"particles": [{"radii": 1}]})", "particles[0].center"},
+      {R"({"particles": [{"centre": [0, 0, 0], "radii": 1}]})", "particles[0].centre"},
+      {R"({"particles": [{"center": [0, 0, 0], "radii": 1, "density": -1}]})", "particles[0].density"},
+      {R"({"particles": [{"center": [0, 0, 0], "radii": 1, "density": "thick"}]})", "particles[0].density"},
+      {R"({"particles": [{"center": [0, 0, 0], "radii": 1, "quaternion": [0, 0, 0, 0]}]})", "particles[0].quaternion"},
+      {R"({"particles": [{"center": [0, 0, 0], "radii": 1, "euler_deg": [0, 0]}]})", "particles[0].euler_deg"},
+      {R"({"particles": [{"center": [0, 0, 0], "radii": 1, "quaternion": [1, 0, 0, 0], "euler_deg": [0, 0, 0]}]})", "particles[0]"},
+      {R"({"particles": [7]})", "particles[0]"},
+      {R"({"particles": {}})", "particles"},
+      {R"({"camera": {"eye": [0, 0, 1]}})", "particles"},
+      {R"({"camera": {"fov_deg": 0}, "particles": []})", "camera.fov_deg"},
+      {R"({"camera": {"up": [0, 0, 0]}, "particles": []})", "camera.up"},
+      {R"({"sun": {"direction": [0, 0, 0]}, "particles": []})", "sun.direction"},
+      {R"({"sun": {"color": [1, -1, 1]}, "particles": []})", "sun.color"},
+      {R"({"sky": {"colour": [1, 1, 1]}, "particles": []})", "sky.colour"},
+      {R"({"particles": [], "lights": []})", "lights"},
+      {R"([1, 2, 3])", "(document)"},
+      {R"({"particles": [)", "invalid JSON"},
+  };
+  for (const Bad& b : bads) {
+    INFO(b.json);
+    std::ofstream(tmp / "scene.json", std::ios::trunc) << b.json;
+    const CliResult r = runCli(renderArgs(tmp / "luts", tmp / "scene.json", out));
+    CHECK(r.exitCode == 1);
+    CHECK(lineCount(r.err) == 1);
+    CHECK(r.err.find("scene.json") != std::string::npos);
+    CHECK(r.err.find(b.field) != std::string::npos);
+  }
+  const CliResult missing = runCli(renderArgs(tmp / "luts", tmp / "no-scene.json", out));
+  CHECK(missing.exitCode == 1);
+  CHECK(missing.err.find("no-scene.json") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("render CLI: absurd sizes and bad options are usage errors", "[render][cli]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts");
+  const fs::path out = tmp / "out.png";
+  const std::string base = "render --luts " + q(tmp / "luts") + " --particles " + q(kScene) + " --out " + q(out) + " ";
+  const char* cases[] = {
+      "--width 0 --height 64",
+      "--width=-5 --height 64",
+      "--width 96 --height=-1",
+      "--width 16385 --height 64",
+      "--width 96 --height 100000",
+      "--width 16384 --height 16384",  // about 21 GiB of buffers
+      "--width 99999999999999999999",
+      "--width abc",
+      "--eye 1,2",
+      "--eye 1,2,x",
+      "--target 1,2,3,4",
+      "--sun 0,0,0",
+      "--sun-color 1,-1,1",
+      "--sky-color 1,1",
+      "--fov 0",
+      "--fov 200",
+      "--up 0,0,0",
+      "--exposure 0",
+      "--terms sunlight",
+      "--eye 0,0,0 --target 0,0,0",
+      "--no-such-option",
+  };
+  for (const char* c : cases) {
+    INFO(c);
+    const CliResult r = runCli(base + c);
+    CHECK(r.exitCode == 2);
+    CHECK(lineCount(r.err) == 1);
+    CHECK(r.err.find("error") != std::string::npos);
+    CHECK_FALSE(fs::exists(out));
+  }
+  for (const std::string& c : {std::string("render --particles ") + q(kScene) + " --out " + q(out),
+                               "render --luts " + q(tmp / "luts") + " --out " + q(out),
+                               "render --luts " + q(tmp / "luts") + " --particles " + q(kScene),
+                               base.substr(0, base.find(" --out")) + " --out " + q(tmp / "out.jpg"),
+                               base.substr(0, base.find(" --out")) + " --out " + q(tmp / "no-dir" / "out.png")}) {
+    INFO(c);
+    const CliResult r = runCli(c);
+    CHECK(r.exitCode == 2);
+    CHECK(lineCount(r.err) == 1);
+  }
+  CHECK_FALSE(fs::exists(tmp / "out.jpg"));
+}

@@ -1,0 +1,86 @@
+#pragma once
+// LUT sets for the renderer's tests, built without the scattering baker: the optical-depth
+// table is baked (small, through bake::bakeOpticalDepth) and the single- and
+// multiple-scattering tables are smooth synthetic functions on the documented axes
+// (θS, φv, θv, log2 ρ) — the renderer's job is to reproduce the lookup, whatever the values.
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/OpticalDepthBaker.h"
+#include "core/ReferenceParticle.h"
+#include "core/Table4D.h"
+#include "io/LutIo.h"
+
+namespace cloudlut::test {
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+// A scattering table over (θS, φv, θv, log2 ρ ∈ [-4, 3]) filled with value(θS, φv, θv, s).
+// The values are consistent at the poles (θS = 0, π; θv = 0) and periodic in φv.
+template <typename F>
+Table4D syntheticScatteringTable(const std::string& name, const std::array<int, 4>& dims, F value) {
+  std::array<Axis, 4> axes = {Axis{"theta_s", "rad", 0.0, kPi, dims[0], false},
+                              Axis{"phi_v", "rad", 0.0, 2.0 * kPi, dims[1], true},
+                              Axis{"theta_v", "rad", 0.0, 0.5 * kPi, dims[2], false},
+                              Axis{"log2_density", "log2", -4.0, 3.0, dims[3], false}};
+  Table4D t(name, axes, {Channel{"radiance", "synthetic radiance per unit sun irradiance"}});
+  for (int i3 = 0; i3 < dims[3]; ++i3)
+    for (int i2 = 0; i2 < dims[2]; ++i2)
+      for (int i1 = 0; i1 < dims[1]; ++i1)
+        for (int i0 = 0; i0 < dims[0]; ++i0)
+          t.at(t.index(i0, i1, i2, i3), 0) = static_cast<float>(
+              value(axes[0].value(i0), axes[1].value(i1), axes[2].value(i2), axes[3].value(i3)));
+  t.parameters() = {{"extinction_per_m", 0.07}, {"radius_m", 183.8}, {"synthetic", true}};
+  return t;
+}
+
+inline Table4D syntheticSingle(const std::array<int, 4>& dims = {16, 24, 8, 8}) {
+  Table4D t = syntheticScatteringTable("single_scattering", dims, [](double ts, double pv, double tv, double s) {
+    return 0.05 * std::exp2(0.25 * s) * (1.0 + 0.4 * std::cos(ts) + 0.3 * std::sin(ts) * std::sin(tv) * std::cos(pv)) *
+           (0.6 + 0.4 * std::cos(tv));
+  });
+  t.parameters()["first_phase"] = {{"kind", 2}, {"param", 0.9}};
+  return t;
+}
+
+inline Table4D syntheticMultiple(const std::array<int, 4>& dims = {16, 24, 8, 8}) {
+  Table4D t = syntheticScatteringTable("multiple_scattering", dims, [](double ts, double pv, double tv, double s) {
+    return 0.08 * (1.0 + 0.5 * std::tanh(0.5 * s)) *
+           (1.0 + 0.5 * std::cos(ts) + 0.2 * std::sin(ts) * std::sin(tv) * std::cos(pv)) * (0.7 + 0.3 * std::cos(tv));
+  });
+  return t;
+}
+
+inline Table4D smallOpticalDepth(DensityModel model = DensityModel::Radial,
+                                 const std::array<int, 4>& dims = {24, 12, 24, 12}) {
+  bake::OpticalDepthSettings s;
+  s.dims = dims;
+  return bake::bakeOpticalDepth(ReferenceParticle(model, 1), s);
+}
+
+// Writes manifest.json and one float binary file per table into `dir` (created).
+inline void writeLutSet(const std::filesystem::path& dir, const std::vector<const Table4D*>& tables) {
+  std::filesystem::create_directories(dir);
+  nlohmann::json entries = nlohmann::json::object();
+  for (const Table4D* t : tables) {
+    const std::string file = t->name() + ".bin";
+    io::writeBinaryLut(*t, io::SampleType::Float, dir / file);
+    nlohmann::json entry = io::describeTable(*t, io::SampleType::Float);
+    entry["files"] = {{"bin", file}};
+    entries[t->name()] = entry;
+  }
+  io::writeManifest(dir, {{"format", "cloudlut-lut-set"}, {"version", 1}, {"generator", "cloudlut tests"},
+                          {"tables", entries}});
+}
+
+// The standard synthetic set: radial optical depth + synthetic single and multiple tables.
+inline void writeSyntheticLutSet(const std::filesystem::path& dir, DensityModel model = DensityModel::Radial) {
+  const Table4D od = smallOpticalDepth(model), l1 = syntheticSingle(), lm = syntheticMultiple();
+  writeLutSet(dir, {&od, &l1, &lm});
+}
+
+}  // namespace cloudlut::test
