@@ -14,6 +14,7 @@
 #include <OpenEXR/ImfInputFile.h>
 
 #include "CliRunner.h"
+#include "core/Errors.h"
 #include "render/Scene.h"
 #include "test_render_support.h"
 

@@ -90,7 +90,8 @@ void tracePath(const SphereMcQuery& q, const glm::dvec3& S, const glm::dvec3& v,
     if (r2 > 1.0) y /= std::sqrt(r2);
     return y;
   };
-  for (int k = 1; k < 10000000; ++k) {
+  const int lastVertex = st.maxOrder > 0 ? st.maxOrder : 10000000;
+  for (int k = 1; k <= lastVertex; ++k) {
     const double chord = k == 1 ? std::max(-2.0 * glm::dot(S, v), 0.0) : distanceToBoundary(x, d);
     x = fly(x, d, chord, w);
     if (!(w > 0.0)) break;
@@ -98,7 +99,7 @@ void tracePath(const SphereMcQuery& q, const glm::dvec3& S, const glm::dvec3& v,
     // Next-event estimation: sunlight scattered for the first time here, toward -d.
     add(k, misA * w * phaseValue(st.first, glm::dot(l, d)) * std::exp(-sigma * distanceToBoundary(x, l)));
     // Technique B for order k + 1.
-    {
+    if (k < lastVertex) {
       const glm::dvec3 dB = rotateAbout(l, samplePhaseCosine(st.first, rng), rng.next());
       const double pmB = phaseValue(st.later, glm::dot(d, dB));
       const double p1B = phaseValue(st.first, glm::dot(l, dB));

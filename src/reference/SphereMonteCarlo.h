@@ -45,6 +45,8 @@ struct SphereMcSettings {
   std::uint64_t seed = 1;
   int splitOrder = 18;      // multipleN holds orders 2 … splitOrder
   double rouletteWeight = 0.05;  // paths lighter than this play Russian roulette
+  int maxOrder = 0;              // > 0: stop paths after this order (multipleAll then holds
+                                 // orders 2 … maxOrder only); 0 = no limit
 };
 
 struct SphereMcQuery {

@@ -22,10 +22,9 @@ class OsMesaContext final : public GlContext {
                            0};
     context_ = OSMesaCreateContextAttribs(attribs, nullptr);
     if (context_ == nullptr)
-      throw GlError(
-          "OSMesa could not create an OpenGL 4.5 core profile context (the renderer needs "
-          "OpenGL 4.5 core; a Mesa build with the llvmpipe driver provides it — is "
-          "libosmesa6 built against gallium/llvmpipe installed?)");
+      throw GlError("OSMesa could not create an OpenGL 4.5 core profile context; " + whatIsOffered() +
+                    ". The renderer needs OpenGL 4.5 core (Mesa's llvmpipe driver provides it; check "
+                    "MESA_GL_VERSION_OVERRIDE and GALLIUM_DRIVER)");
     makeCurrent();
     const auto getString = reinterpret_cast<const unsigned char* (*)(unsigned)>(
         OSMesaGetProcAddress("glGetString"));
@@ -53,6 +52,27 @@ class OsMesaContext final : public GlContext {
   ~OsMesaContext() override { OSMesaDestroyContext(context_); }
   OsMesaContext(const OsMesaContext&) = delete;
   OsMesaContext& operator=(const OsMesaContext&) = delete;
+
+  // What OSMesa offers instead, probed with a context of the default version.
+  static std::string whatIsOffered() {
+    OSMesaContext probe = OSMesaCreateContextAttribs(nullptr, nullptr);
+    if (probe == nullptr) return "it creates no OpenGL context at all";
+    std::array<unsigned char, 4> pixel{};
+    std::string offered = "it offers only";
+    if (OSMesaMakeCurrent(probe, pixel.data(), GL_UNSIGNED_BYTE, 1, 1)) {
+      const auto getString = reinterpret_cast<const unsigned char* (*)(unsigned)>(
+          OSMesaGetProcAddress("glGetString"));
+      const unsigned char* version = getString ? getString(GL_VERSION) : nullptr;
+      const unsigned char* renderer = getString ? getString(GL_RENDERER) : nullptr;
+      offered += std::string(" OpenGL ") + (version ? reinterpret_cast<const char*>(version) : "?") + " (" +
+                 (renderer ? reinterpret_cast<const char*>(renderer) : "?") + ")";
+    } else {
+      offered += " a context it cannot make current";
+    }
+    OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+    OSMesaDestroyContext(probe);
+    return offered;
+  }
 
   GlProc procAddress(const char* name) const override {
     return reinterpret_cast<GlProc>(OSMesaGetProcAddress(name));

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (ASan + UBSan) into build-fuzz/ and runs each for
+# SECONDS seconds (default 20: the CI smoke run; pass more for a real campaign).
+# Seeds come from tests/fuzz/corpus/NAME; new inputs go to out/fuzz/corpus/NAME, crashes to
+# out/fuzz/crashes (turn each into a regression test in tests/ with its input).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-20}
+command -v clang++ >/dev/null || { apt-get install -y -qq clang >/dev/null; }
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCLOUDLUT_FUZZ=ON >/dev/null
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_binary_lut fuzz_exr_lut fuzz_manifest fuzz_scene fuzz_query_csv
+mkdir -p out/fuzz/crashes
+export ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1
+status=0
+for t in fuzz_binary_lut fuzz_exr_lut fuzz_manifest fuzz_scene fuzz_query_csv; do
+  mkdir -p "out/fuzz/corpus/$t"
+  echo "fuzzing $t for ${seconds}s"
+  if ! ./build-fuzz/tests/fuzz/$t "out/fuzz/corpus/$t" "tests/fuzz/corpus/$t" -max_total_time="$seconds" \
+       -rss_limit_mb=2048 -max_len=65536 -artifact_prefix=out/fuzz/crashes/$t- -print_final_stats=1 \
+       > "out/fuzz/$t.log" 2>&1; then
+    echo "FAILED: $t (see out/fuzz/$t.log and out/fuzz/crashes)"
+    tail -n 30 "out/fuzz/$t.log"
+    status=1
+  else
+    grep -E "stat::number_of_executed_units" "out/fuzz/$t.log" || true
+  fi
+done
+exit $status
