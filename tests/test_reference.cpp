@@ -39,12 +39,12 @@ TEST_CASE("MC single scattering matches closed forms on the axis", "[reference]"
     const auto lit = estimateOne({l, -l, l, sigma}, s);
     const double litExact = phase(s.first, -1.0) * 0.5 * (1.0 - std::exp(-4.0 * sigma));
     CHECK(std::abs(lit.single - litExact) < 4.0 * lit.singleSe + 1e-12);
-    // Entering at the dark pole looking at the sun: d_sun = 2 - t, L1 = 2σ e^{-2σ} (every
-    // scattering point is equally lit); the estimate has no variance left but the path's.
+    // Entering at the dark pole looking at the sun: d_sun = 2 - t, so every point of the chord
+    // contributes σ e^{-2σ}: L1 = 2σ e^{-2σ}.
     const auto dark = estimateOne({-l, l, l, sigma}, s);
     const double darkExact = phase(s.first, 1.0) * 2.0 * sigma * std::exp(-2.0 * sigma);
-    CHECK(std::abs(dark.single - darkExact) <= 1e-9 * darkExact + 4.0 * dark.singleSe);
-    CHECK(dark.single == Approx(darkExact).epsilon(1e-6));
+    CHECK(std::abs(dark.single - darkExact) <= 4.0 * dark.singleSe);
+    CHECK(dark.singleSe < 0.05 * darkExact);
   }
 }
 

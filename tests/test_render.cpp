@@ -23,31 +23,6 @@ using namespace cloudlut::test;
 
 namespace {
 
-struct Hit {
-  bool hit = false;
-  float tEnter = 0, tExit = 0;
-  glm::vec3 S{0.0f}, v{0.0f};
-  float closest = 0;  // distance of the ray from the centre in particle space (1 = grazing)
-};
-
-// The ray (eye, unit dir) against the particle, scaled by `inflate`, in its unit-sphere space.
-Hit intersect(const Particle& p, const glm::vec3& eye, const glm::vec3& dir, float inflate = 1.0f) {
-  const glm::mat3 inv = p.toParticle();
-  const glm::vec3 o = inv * (eye - p.center) / inflate, d = inv * dir / inflate;
-  const double a = glm::dot(d, d), b = glm::dot(o, d), c = double(glm::dot(o, o)) - 1.0;
-  Hit h;
-  h.closest = static_cast<float>(std::sqrt(std::max(0.0, double(glm::dot(o, o)) - b * b / a)));
-  const double disc = b * b - a * c;
-  if (c <= 0 || b >= 0 || disc <= 0) return h;
-  const double q = -b + std::sqrt(disc);
-  h.hit = true;
-  h.tEnter = static_cast<float>(c / q);
-  h.tExit = static_cast<float>(q / a);
-  h.S = glm::normalize(o + h.tEnter * d);
-  h.v = glm::normalize(d);
-  return h;
-}
-
 float firstPhase(const Table4D& single, float mu) {
   const auto phase = single.parameters().value("first_phase", nlohmann::json::object());
   return glsl::phaseFunction(phase.value("kind", 2), mu, phase.value("param", 0.9f));
@@ -201,4 +176,45 @@ TEST_CASE("render: particles are drawn back to front", "[render]") {
   ps[2].center = {0, 0, 3};
   const auto order = backToFrontOrder(ps, {0, 0, 10});
   CHECK(order == std::vector<std::size_t>{1, 0, 2});
+}
+
+TEST_CASE("render: degenerate geometry gives finite pixels", "[render]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts");
+  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  auto context = createHeadlessContext();
+  Renderer renderer(*context, luts);
+  RenderSettings settings;
+  settings.width = 65;  // odd: the centre pixel's ray goes exactly through the particle's pole
+  settings.height = 65;
+
+  // Entry at the pole of the optical-depth frame (S = +z) with the sun at S (θS = 0) and the
+  // view ray through the centre (θv = 0): every atan(0, 0) of the parameterization at once.
+  Particle unit;
+  settings.view.camera = Camera{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40};
+  settings.view.lighting.sunDirection = {0, 0, 1};
+  Image image = renderer.render({unit}, settings);
+  CHECK(image.nonFiniteCount() == 0);
+  CHECK(image.pixel(32, 32)[3] > 0.5f);
+  settings.view.lighting.sunDirection = {0, 0, -1};  // θS = π
+  image = renderer.render({unit}, settings);
+  CHECK(image.nonFiniteCount() == 0);
+
+  // The eye inside one particle: that particle is skipped, the one ahead is drawn; a particle
+  // behind the eye is clipped.
+  Particle around, ahead, behind;
+  around.radii = glm::vec3(2.0f);
+  around.center = {0, 0, 5};
+  ahead.center = {0, 0, 0};
+  behind.center = {0, 0, 9};
+  image = renderer.render({around, ahead, behind}, settings);
+  CHECK(image.nonFiniteCount() == 0);
+  CHECK(image.pixel(32, 32)[3] > 0.5f);
+  CHECK(image.pixel(0, 0)[3] == 0.0f);
+  CHECK(image.distanceAt(32, 32) == Approx(4.0).margin(0.3));
+
+  // No particles at all: an empty, transparent image.
+  image = renderer.render({}, settings);
+  CHECK(image.nonFiniteCount() == 0);
+  CHECK(std::all_of(image.rgba.begin(), image.rgba.end(), [](float v) { return v == 0.0f; }));
 }

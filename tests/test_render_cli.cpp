@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <vector>
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -15,6 +17,7 @@
 
 #include "CliRunner.h"
 #include "core/Errors.h"
+#include "core/TableLookup.h"
 #include "render/Scene.h"
 #include "test_render_support.h"
 
@@ -33,6 +36,37 @@ std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 // A render command line for `luts`, `scene` and `out` at 96×64 plus `extra`.
 std::string renderArgs(const fs::path& luts, const fs::path& scene, const fs::path& out, const std::string& extra = "") {
   return "render --luts " + q(luts) + " --particles " + q(scene) + " --out " + q(out) + " --width 96 --height 64 " + extra;
+}
+
+// The named FLOAT channels of an EXR image, and its size.
+std::vector<std::vector<float>> readExrChannels(const fs::path& path, const std::vector<std::string>& names, int& w, int& h) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i dw = file.header().dataWindow();
+  w = dw.max.x - dw.min.x + 1;
+  h = dw.max.y - dw.min.y + 1;
+  std::vector<std::vector<float>> channels(names.size(), std::vector<float>(static_cast<std::size_t>(w) * h));
+  Imf::FrameBuffer frame;
+  for (std::size_t c = 0; c < names.size(); ++c)
+    frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(channels[c].data()), sizeof(float),
+                                      sizeof(float) * static_cast<std::size_t>(w)));
+  file.setFrameBuffer(frame);
+  file.readPixels(dw.min.y, dw.max.y);
+  return channels;
+}
+
+// Column k of every data row of a CSV text.
+std::vector<double> csvColumn(const std::string& text, int k) {
+  std::istringstream lines(text);
+  std::string line;
+  std::getline(lines, line);  // header
+  std::vector<double> values;
+  while (std::getline(lines, line)) {
+    std::istringstream fields(line);
+    std::string f;
+    for (int i = 0; i <= k; ++i) std::getline(fields, f, ',');
+    values.push_back(std::stod(f));
+  }
+  return values;
 }
 
 bool hasTempFiles(const fs::path& dir) {
@@ -258,4 +292,92 @@ TEST_CASE("render CLI: absurd sizes and bad options are usage errors", "[render]
     CHECK(lineCount(r.err) == 1);
   }
   CHECK_FALSE(fs::exists(tmp / "out.jpg"));
+}
+
+TEST_CASE("render CLI: without an OpenGL 4.5 core context the error says what is missing", "[render][cli]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts");
+  const fs::path out = tmp / "out.png";
+  // Mesa honours this variable: its contexts then claim OpenGL 3.3 at most.
+  ::setenv("MESA_GL_VERSION_OVERRIDE", "3.3", 1);
+  const CliResult r = runCli(renderArgs(tmp / "luts", kScene, out));
+  ::unsetenv("MESA_GL_VERSION_OVERRIDE");
+  CHECK(r.exitCode == 1);
+  CHECK(lineCount(r.err) == 1);
+  CHECK(r.err.find("OpenGL 4.5 core") != std::string::npos);
+  CHECK(r.err.find("3.3") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("render CLI: pixels of one particle reproduce `cloudlut query` for the same rays", "[render][cli]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
+  // Red sun, green sky: R = single + multiple, A = 1 - transmittance.
+  std::ofstream(tmp / "one.json") << R"({
+    "camera": {"eye": [0.7, 1.1, 6.5], "target": [0.2, -0.1, 0.0], "fov_deg": 40},
+    "sun": {"direction": [0.3, 0.8, 0.5], "color": [1, 0, 0]},
+    "sky": {"color": [0, 1, 0]},
+    "particles": [{"center": [0.3, -0.2, 0.1], "radii": 1.6, "euler_deg": [20, -35, 50], "density": 0.25}]})";
+  const CliResult r = runCli(renderArgs(tmp / "luts", tmp / "one.json", tmp / "one.exr", "--quiet"));
+  REQUIRE(r.exitCode == 0);
+  int w = 0, h = 0;
+  const auto px = readExrChannels(tmp / "one.exr", {"R", "A"}, w, h);
+
+  const render::Scene scene = render::readScene(tmp / "one.json");
+  const render::View view = render::resolveView(scene, {});
+  const render::Particle& p = scene.particles[0];
+  const render::CameraFrame camera(view.camera, w, h);
+  const glm::vec3 l = glm::normalize(p.toParticle() * view.lighting.sunDirection);
+  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  const Table4D& od = luts.tables.at("optical_depth").table;
+
+  // Rays through every third pixel where the particle is not too thin to matter.
+  struct Ray { std::size_t pixel; glm::vec3 S, v; float chord; };
+  std::vector<Ray> rays;
+  for (int y = 0; y < h; y += 3)
+    for (int x = 0; x < w; x += 3) {
+      const Hit hit = intersect(p, camera.eye(), camera.rayDirection(float(x) + 0.5f, float(y) + 0.5f));
+      if (!hit.hit) continue;
+      const OpticalDepthSample s = lookupOpticalDepth(od, hit.S, hit.v, p.density);
+      if (s.chordLength < 0.2f || s.opticalDepth < 0.05f) continue;
+      rays.push_back({static_cast<std::size_t>(y) * w + x, hit.S, hit.v, s.chordLength});
+    }
+  REQUIRE(rays.size() > 100);
+  const auto writeCsv = [&](const fs::path& path, const std::vector<float>& density) {
+    std::ofstream csv(path);
+    csv << "sx,sy,sz,vx,vy,vz,lx,ly,lz,density\n";
+    char line[256];
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      const Ray& ray = rays[i];
+      std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", ray.S.x, ray.S.y,
+                    ray.S.z, ray.v.x, ray.v.y, ray.v.z, l.x, l.y, l.z, double(density[i]));
+      csv << line;
+    }
+  };
+  // Query 1 at the particle's density: optical depth, transmittance, multiple scattering.
+  writeCsv(tmp / "rho.csv", std::vector<float>(rays.size(), p.density));
+  const CliResult q1 = runCli("query " + q(tmp / "luts") + " --csv " + q(tmp / "rho.csv"));
+  REQUIRE(q1.exitCode == 0);
+  const auto tau = csvColumn(q1.out, 10), transmittance = csvColumn(q1.out, 11), multiple = csvColumn(q1.out, 14);
+  REQUIRE(tau.size() == rays.size());
+  // Query 2 at the ray's mean density ρ·T̄ (seed §4.4), T̄ = τ / (σ ρ L): single scattering.
+  const double sigma = unitOpticalRadius(od);
+  std::vector<float> meanDensity(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i)
+    meanDensity[i] = static_cast<float>(tau[i] / (sigma * rays[i].chord));
+  writeCsv(tmp / "mean.csv", meanDensity);
+  const CliResult q2 = runCli("query " + q(tmp / "luts") + " --csv " + q(tmp / "mean.csv"));
+  REQUIRE(q2.exitCode == 0);
+  const auto single = csvColumn(q2.out, 13);
+
+  double maxRadiance = 0, maxTransmittance = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const double radiance = single[i] + multiple[i];
+    maxRadiance = std::max(maxRadiance, std::abs(px[0][rays[i].pixel] - radiance) / radiance);
+    maxTransmittance = std::max(maxTransmittance, std::abs(1.0 - px[1][rays[i].pixel] - transmittance[i]) / transmittance[i]);
+  }
+  std::printf("[render] render vs `cloudlut query`, %zu rays: max relative difference radiance %.2e, "
+              "transmittance %.2e\n", rays.size(), maxRadiance, maxTransmittance);
+  CHECK(maxRadiance <= 0.01);
+  CHECK(maxTransmittance <= 0.01);
 }

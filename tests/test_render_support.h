@@ -3,17 +3,20 @@
 // table is baked (small, through bake::bakeOpticalDepth) and the single- and
 // multiple-scattering tables are smooth synthetic functions on the documented axes
 // (θS, φv, θv, log2 ρ) — the renderer's job is to reproduce the lookup, whatever the values.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
 #include <string>
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "bake/OpticalDepthBaker.h"
 #include "core/ReferenceParticle.h"
 #include "core/Table4D.h"
 #include "io/LutIo.h"
+#include "render/Scene.h"
 
 namespace cloudlut::test {
 
@@ -81,6 +84,32 @@ inline void writeLutSet(const std::filesystem::path& dir, const std::vector<cons
 inline void writeSyntheticLutSet(const std::filesystem::path& dir, DensityModel model = DensityModel::Radial) {
   const Table4D od = smallOpticalDepth(model), l1 = syntheticSingle(), lm = syntheticMultiple();
   writeLutSet(dir, {&od, &l1, &lm});
+}
+
+// The ray against a particle in its unit-sphere space, computed independently of the shader.
+struct Hit {
+  bool hit = false;
+  float tEnter = 0, tExit = 0;
+  glm::vec3 S{0.0f}, v{0.0f};
+  float closest = 0;  // distance of the ray from the centre in particle space (1 = grazing)
+};
+
+// The ray (eye, unit dir) against the particle, scaled by `inflate`, in its unit-sphere space.
+inline Hit intersect(const render::Particle& p, const glm::vec3& eye, const glm::vec3& dir, float inflate = 1.0f) {
+  const glm::mat3 inv = p.toParticle();
+  const glm::vec3 o = inv * (eye - p.center) / inflate, d = inv * dir / inflate;
+  const double a = glm::dot(d, d), b = glm::dot(o, d), c = double(glm::dot(o, o)) - 1.0;
+  Hit h;
+  h.closest = static_cast<float>(std::sqrt(std::max(0.0, double(glm::dot(o, o)) - b * b / a)));
+  const double disc = b * b - a * c;
+  if (c <= 0 || b >= 0 || disc <= 0) return h;
+  const double q = -b + std::sqrt(disc);
+  h.hit = true;
+  h.tEnter = static_cast<float>(c / q);
+  h.tExit = static_cast<float>(q / a);
+  h.S = glm::normalize(o + h.tEnter * d);
+  h.v = glm::normalize(d);
+  return h;
 }
 
 }  // namespace cloudlut::test

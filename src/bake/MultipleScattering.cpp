@@ -179,7 +179,8 @@ FastMultipleScattering::FastMultipleScattering(const ScatteringSettings& setting
 
 FastMultipleScattering::~FastMultipleScattering() { delete shared_; }
 
-void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, nlohmann::json& report,
+void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, Table4D* tailTable,
+                                       nlohmann::json& report,
                                        const ProgressFn& progress, double progressBase,
                                        double progressSpan) const {
   const Shared& sh = *shared_;
@@ -319,14 +320,89 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
     say(0.2 + 0.6 * (n - 2) / std::max(1, explicitOrders - 2) * (orders > 0 ? 1.0 : 0.3));
   }
   nlohmann::json sliceReport;
+  std::vector<float> tail;
   if (orders <= 0) {
-    // Remaining orders: solve (I − K) X = K·J_last for the tail X = Σ_{n>N} J_n, by GMRES(m).
+    // Remaining orders: the tail X = Σ_{n>N} J_n solves (I − K) X = K·J_N. Restarted GMRES,
+    // right-preconditioned by an isotropic coarse-space correction: the slow modes of dense
+    // particles are smooth, nearly isotropic diffusion modes, and the coarse operator
+    // K_c = R·K·P (P: isotropic field on the spatial nodes, R: angular mean) holds them.
+    // K_c is assembled from the transport stencil (the phase matrix conserves the angular
+    // mean exactly), and B = I + P[(I − K_c)^{-1} − I]R.
+    const auto& q = sh.coarse.nodeWeights();
+    const double inv4pi = 1.0 / (4.0 * kPi);
+    std::vector<double> Kc(static_cast<std::size_t>(NS) * NS, 0.0);
+    tbb::parallel_for(0, NS, [&](int sIdx) {
+      double* row = &Kc[static_cast<std::size_t>(sIdx) * NS];
+      for (int dd = 0; dd < D; ++dd) {
+        const StencilEntry* e = &stencil[(static_cast<std::size_t>(sIdx) * D + dd) * K];
+        const double qd = q[dd] * inv4pi;
+        for (int k = 0; k < K; ++k) {
+          const std::size_t base = e[k].base;
+          const int ir0 = static_cast<int>(base / strideR), it0 = static_cast<int>((base % strideR) / strideT);
+          for (int c = 0; c < 4; ++c) {
+            const double wr = qd * e[k].wr[c];
+            row[(ir0 + c) * nt + it0] += wr * (1.0 - e[k].ft);
+            row[(ir0 + c) * nt + it0 + 1] += wr * e[k].ft;
+          }
+        }
+      }
+    });
+    // LU of I − K_c with partial pivoting (serial: deterministic, NS³/3 flops).
+    std::vector<double> LU(Kc.size());
+    for (std::size_t i = 0; i < Kc.size(); ++i) LU[i] = -Kc[i];
+    for (int i = 0; i < NS; ++i) LU[static_cast<std::size_t>(i) * NS + i] += 1.0;
+    std::vector<int> piv(NS);
+    for (int c = 0; c < NS; ++c) {
+      int pr = c;
+      for (int r2 = c + 1; r2 < NS; ++r2)
+        if (std::abs(LU[static_cast<std::size_t>(r2) * NS + c]) > std::abs(LU[static_cast<std::size_t>(pr) * NS + c])) pr = r2;
+      piv[c] = pr;
+      if (pr != c)
+        for (int j = 0; j < NS; ++j) std::swap(LU[static_cast<std::size_t>(c) * NS + j], LU[static_cast<std::size_t>(pr) * NS + j]);
+      const double d = LU[static_cast<std::size_t>(c) * NS + c];
+      if (d == 0.0) continue;
+      for (int r2 = c + 1; r2 < NS; ++r2) {
+        double& f = LU[static_cast<std::size_t>(r2) * NS + c];
+        f /= d;
+        if (f == 0.0) continue;
+        const double* src = &LU[static_cast<std::size_t>(c) * NS];
+        double* dst = &LU[static_cast<std::size_t>(r2) * NS];
+        for (int j = c + 1; j < NS; ++j) dst[j] -= f * src[j];
+      }
+    }
+    const auto coarseSolve = [&](std::vector<double>& x) {
+      for (int c = 0; c < NS; ++c) std::swap(x[c], x[piv[c]]);
+      for (int i = 0; i < NS; ++i)
+        for (int j = 0; j < i; ++j) x[i] -= LU[static_cast<std::size_t>(i) * NS + j] * x[j];
+      for (int i = NS - 1; i >= 0; --i) {
+        for (int j = i + 1; j < NS; ++j) x[i] -= LU[static_cast<std::size_t>(i) * NS + j] * x[j];
+        const double d = LU[static_cast<std::size_t>(i) * NS + i];
+        x[i] = d != 0.0 ? x[i] / d : 0.0;
+      }
+    };
+    const auto precondition = [&](const std::vector<float>& in, std::vector<float>& out) {
+      std::vector<double> mean(NS, 0.0);
+      tbb::parallel_for(0, NS, [&](int sIdx) {
+        double m = 0.0;
+        for (int dd = 0; dd < D; ++dd) m += q[dd] * in[static_cast<std::size_t>(sIdx) * D + dd];
+        mean[sIdx] = m * inv4pi;
+      });
+      std::vector<double> corr = mean;
+      coarseSolve(corr);
+      tbb::parallel_for(0, NS, [&](int sIdx) {
+        const float c = static_cast<float>(corr[sIdx] - mean[sIdx]);
+        for (int dd = 0; dd < D; ++dd) {
+          const std::size_t i = static_cast<std::size_t>(sIdx) * D + dd;
+          out[i] = in[i] + c;
+        }
+      });
+    };
     std::vector<float> b(N);
     applyK(J, b);
     ++applications;
-    const int m = 30, maxApplications = 400;
-    const double tol = 1e-5;
-    std::vector<float> x(N, 0.0f), r = b, w(N);
+    const int m = 24, maxApplications = 200;
+    const double tol = 1e-4;
+    std::vector<float> x(N, 0.0f), r = b, w(N), z(N);
     const double bnorm = std::sqrt(dot(b, b));
     double rnorm = bnorm;
     int iterations = 0;
@@ -339,12 +415,13 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
       g[0] = rnorm;
       int k = 0;
       for (; k < m && applications < maxApplications; ++k) {
-        applyK(V[k], w);
+        precondition(V[k], z);
+        applyK(z, w);
         ++applications;
         ++iterations;
-        // (I − K) v = v − K v
+        // (I − K) z = z − K z
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N, 8192), [&](const auto& rg) {
-          for (std::size_t i = rg.begin(); i < rg.end(); ++i) w[i] = V[k][i] - w[i];
+          for (std::size_t i = rg.begin(); i < rg.end(); ++i) w[i] = z[i] - w[i];
         });
         for (int j = 0; j <= k; ++j) {
           H[j][k] = dot(w, V[j]);
@@ -356,31 +433,35 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
           H[j + 1][k] = -sn[j] * H[j][k] + cs[j] * H[j + 1][k];
           H[j][k] = t;
         }
-        const double den = std::hypot(H[k][k], H[k + 1][k]);
+        const double hk1 = H[k + 1][k];
+        const double den = std::hypot(H[k][k], hk1);
         cs[k] = den > 0 ? H[k][k] / den : 1.0;
-        sn[k] = den > 0 ? H[k + 1][k] / den : 0.0;
+        sn[k] = den > 0 ? hk1 / den : 0.0;
         H[k][k] = den;
         H[k + 1][k] = 0.0;
         g[k + 1] = -sn[k] * g[k];
         g[k] = cs[k] * g[k];
         rnorm = std::abs(g[k + 1]);
-        if (rnorm <= tol * bnorm || !(H[k][k] > 0.0)) {
+        if (rnorm <= tol * bnorm || !(hk1 > 0.0)) {
           ++k;
           break;
         }
         std::vector<float> vn(N);
-        const float invh = static_cast<float>(1.0 / std::max(std::sqrt(dot(w, w)), 1e-300));
+        const float invh = static_cast<float>(1.0 / hk1);
         for (std::size_t i = 0; i < N; ++i) vn[i] = w[i] * invh;
         V.push_back(std::move(vn));
       }
-      // Solve the triangular system and update x.
+      // Solve the triangular system; x += B·(V y).
       std::vector<double> y(k, 0.0);
       for (int i = k - 1; i >= 0; --i) {
         double t = g[i];
         for (int j = i + 1; j < k; ++j) t -= H[i][j] * y[j];
         y[i] = H[i][i] != 0.0 ? t / H[i][i] : 0.0;
       }
-      for (int j = 0; j < k; ++j) axpy(static_cast<float>(y[j]), V[j], x);
+      std::fill(z.begin(), z.end(), 0.0f);
+      for (int j = 0; j < k; ++j) axpy(static_cast<float>(y[j]), V[j], z);
+      precondition(z, w);
+      axpy(1.0f, w, x);
       // True residual r = b − (I − K) x.
       applyK(x, w);
       ++applications;
@@ -390,7 +471,7 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
       rnorm = std::sqrt(dot(r, r));
       say(0.35 + 0.45 * std::min(1.0, static_cast<double>(applications) / maxApplications));
     }
-    axpy(1.0f, x, sum);
+    tail = std::move(x);
     sliceReport["gmres_iterations"] = iterations;
     sliceReport["gmres_relative_residual"] = bnorm > 0 ? rnorm / bnorm : 0.0;
   }
@@ -405,6 +486,7 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
   gp[0] = std::max(2, res.gatherPoints / 4);
   gp[1] = std::max(2, res.gatherPoints / 4);
   gp[2] = std::max(2, res.gatherPoints - gp[0] - gp[1]);
+  const auto gather = [&](const std::vector<float>& field, Table4D& dst) {
   tbb::parallel_for(0, nS * nP, [&](int row) {
     const int iS = row % nS, iP = row / nS;
     const double thS = ax[0].value(iS), phV = ax[1].value(iP);
@@ -441,7 +523,7 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
         const float fb = static_cast<float>(fbd);
         float corner[2] = {0.0f, 0.0f};
         for (int c = 0; c < 2; ++c) {
-          const float* p = &sum[ir * strideR + it * strideT + (ia + c) * nb + ib];
+          const float* p = &field[ir * strideR + it * strideT + (ia + c) * nb + ib];
           for (int j = 0; j < 4; ++j, p += strideR) {
             const float a0 = p[0] + fb * (p[1] - p[0]);
             const float a1 = p[strideT] + fb * (p[strideT + 1] - p[strideT]);
@@ -450,9 +532,12 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
         }
         value += ww[k] * (corner[0] + fa * (corner[1] - corner[0]));
       }
-      table.at(table.index(iS, iP, iV, slice), 0) = static_cast<float>(std::max(0.0, value));
+      dst.at(dst.index(iS, iP, iV, slice), 0) = static_cast<float>(std::max(0.0, value));
     }
   });
+  };
+  gather(sum, table);
+  if (tailTable && !tail.empty()) gather(tail, *tailTable);
   (void)na;
   const double tGather = seconds(t3);
   say(1.0);

@@ -47,13 +47,14 @@ struct FastResolution {
 };
 
 // Fills the multiple-scattering values of density slice `slice` (σ = optical radius) of
-// `table` (axes θS, φv, θv, log2 ρ). `orders` <= 0 means converged. Adds what it measured
-// (orders, seconds, iterations, residual) to `report`.
+// `table` (axes θS, φv, θv, log2 ρ) with orders 2 … N (N = settings.orders, or 18 when
+// converged). When converged (orders <= 0), the remaining orders N+1 … ∞ go to `tailTable`
+// (same axes) if given. Sets `report` to what it measured (orders, seconds, iterations).
 class FastMultipleScattering {
  public:
   FastMultipleScattering(const ScatteringSettings& settings, const FastResolution& res = {});
   ~FastMultipleScattering();
-  void bakeSlice(double sigma, int slice, Table4D& table, nlohmann::json& report,
+  void bakeSlice(double sigma, int slice, Table4D& table, Table4D* tailTable, nlohmann::json& report,
                  const ProgressFn& progress, double progressBase, double progressSpan) const;
 
  private:

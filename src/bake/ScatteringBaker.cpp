@@ -1,5 +1,6 @@
 #include "bake/ScatteringBaker.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -76,9 +77,13 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
     return sigma1 * std::exp2(s);
   };
   const auto t0 = std::chrono::steady_clock::now();
-  const double singleSpan = settings.single ? (settings.multiple ? 0.05 : 1.0) : 0.0;
+  std::optional<Table4D> closureSingle;
+  const double singleSpan = settings.single || (settings.multiple && settings.orders <= 0) ? (settings.multiple ? 0.05 : 1.0) : 0.0;
 
-  if (settings.single) {
+  // Converged multiple scattering closes its energy balance against the single table, which
+  // is then baked even when not requested (it costs a few percent of the whole).
+  const bool converged = settings.multiple && settings.orders <= 0 && settings.method == ScatteringMethod::Fast;
+  if (settings.single || converged) {
     Table4D t = makeTable(settings, "single_scattering", "radiance",
                           "single-scattered radiance per unit sun irradiance WITHOUT the phase function "
                           "(multiply by P1(v.l)), sr^-1 per sr^-1 of phase");
@@ -91,7 +96,8 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
       bakeSingleScatteringSlice(sigmaOf(k), k, t);
       reportProgress(progress, "single scattering", singleSpan * (k + 1) / nRho);
     }
-    result.single = std::move(t);
+    if (settings.single) result.single = std::move(t);
+    else closureSingle = std::move(t);
   }
   const double tSingle = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -108,14 +114,47 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
     if (settings.method == ScatteringMethod::Fast) {
       const FastResolution res;
       FastMultipleScattering fast(settings, res);
+      std::optional<Table4D> tail;
+      if (converged) tail = makeTable(settings, "multiple_scattering_tail", "radiance", "orders 19 and up");
       report["resolution"] = {{"radial", res.radial}, {"zenith", res.zenith}, {"dir_theta", res.dirTheta},
                               {"dir_phi", res.dirPhi}, {"fine_theta", res.fineTheta}, {"fine_phi", res.finePhi},
                               {"transport_points", res.transportPoints}, {"gather_points", res.gatherPoints}};
       for (int k = 0; k < nRho; ++k) {
         nlohmann::json r;
-        fast.bakeSlice(sigmaOf(k), k, t, r, progress, singleSpan + (1.0 - singleSpan) * k / nRho,
-                       (1.0 - singleSpan) / nRho);
+        fast.bakeSlice(sigmaOf(k), k, t, tail ? &*tail : nullptr, r, progress,
+                       singleSpan + (1.0 - singleSpan) * k / nRho, (1.0 - singleSpan) / nRho);
         slices.push_back(r);
+      }
+      if (tail) {
+        // Energy closure of the tail (orders 19 … ∞): a non-absorbing particle returns all the
+        // light it receives, so the tail's share is 1 − unscattered − single − orders 2…18,
+        // all of which are accurate; the discrete operator fixes the tail's shape, the balance
+        // its amplitude. The scale factor measures the operator's conservation error.
+        EnergyInputs ein;
+        ein.unitOpticalRadius = sigma1;
+        ein.firstPhaseKind = settings.firstPhase.kind;
+        ein.firstPhaseParam = settings.firstPhase.param;
+        const Table4D& single = result.single ? *result.single : *closureSingle;
+        const EnergyBalance head = computeEnergyBalance(&single, &t, ein);
+        const EnergyBalance rest = computeEnergyBalance(nullptr, &*tail, ein);
+        for (int k = 0; k < nRho; ++k) {
+          const double want = 1.0 - head.slices[k].total;
+          const double have = rest.slices[k].multiple;
+          double scale = have > 1e-12 ? want / have : 1.0;
+          const bool clamped = !(scale >= 0.5 && scale <= 2.0);
+          scale = std::clamp(scale, 0.5, 2.0);
+          for (int iV = 0; iV < settings.dims[2]; ++iV)
+            for (int iP = 0; iP < settings.dims[1]; ++iP)
+              for (int iS = 0; iS < settings.dims[0]; ++iS) {
+                const std::size_t n = t.index(iS, iP, iV, k);
+                t.at(n, 0) += static_cast<float>(scale) * tail->at(n, 0);
+              }
+          slices[k]["tail_share_before_closure"] = have;
+          slices[k]["tail_share"] = want;
+          slices[k]["total_before_closure"] = head.slices[k].total + have;
+          slices[k]["energy_closure_scale"] = scale;
+          if (clamped) slices[k]["energy_closure_warning"] = "scale outside [0.5, 2]: clamped";
+        }
       }
     } else {
       bakePaperMultipleScattering(settings, t, slices, progress, singleSpan, 1.0 - singleSpan);

@@ -55,7 +55,8 @@ class OsMesaContext final : public GlContext {
 
   // What OSMesa offers instead, probed with a context of the default version.
   static std::string whatIsOffered() {
-    OSMesaContext probe = OSMesaCreateContextAttribs(nullptr, nullptr);
+    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_PROFILE, OSMESA_CORE_PROFILE, 0};
+    OSMesaContext probe = OSMesaCreateContextAttribs(attribs, nullptr);
     if (probe == nullptr) return "it creates no OpenGL context at all";
     std::array<unsigned char, 4> pixel{};
     std::string offered = "it offers only";
@@ -69,7 +70,6 @@ class OsMesaContext final : public GlContext {
     } else {
       offered += " a context it cannot make current";
     }
-    OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
     OSMesaDestroyContext(probe);
     return offered;
   }

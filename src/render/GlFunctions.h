@@ -10,6 +10,7 @@ namespace cloudlut::render {
 #define CLOUDLUT_GL_FUNCTIONS(X)                                  \
   X(PFNGLGETSTRINGPROC, GetString)                                \
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                            \
+  X(PFNGLGETINTEGER64VPROC, GetInteger64v)                        \
   X(PFNGLGETERRORPROC, GetError)                                  \
   X(PFNGLENABLEPROC, Enable)                                      \
   X(PFNGLDISABLEPROC, Disable)                                    \

@@ -236,6 +236,13 @@ struct Renderer::Impl {
                        " exceeds this OpenGL's limit of " + std::to_string(std::min(maxRenderbuffer, viewport[0])) +
                        " pixels per side");
 
+    GLint64 maxStorage = 0;
+    gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxStorage);
+    const auto maxParticles = static_cast<std::size_t>(maxStorage) / sizeof(GpuParticle);
+    if (particles.size() > maxParticles)
+      throw UsageError(std::to_string(particles.size()) + " particles exceed this OpenGL's shader storage limit of " +
+                       std::to_string(maxParticles) + " particles per render");
+
     const CameraFrame camera(s.view.camera, s.width, s.height);
     const glm::vec3 eye = camera.eye();
 
