@@ -282,7 +282,7 @@ TEST_CASE("render CLI: absurd sizes and bad options are usage errors", "[render]
     CHECK_FALSE(fs::exists(out));
   }
   for (const std::string& c : {std::string("render --particles ") + q(kScene) + " --out " + q(out),
-                               "render --luts " + q(tmp / "luts") + " --out " + q(out),
+                               "render --luts " + q(tmp / "luts") + " --out " + q(out) + " --scene no_such_preset",
                                "render --luts " + q(tmp / "luts") + " --particles " + q(kScene),
                                base.substr(0, base.find(" --out")) + " --out " + q(tmp / "out.jpg"),
                                base.substr(0, base.find(" --out")) + " --out " + q(tmp / "no-dir" / "out.png")}) {

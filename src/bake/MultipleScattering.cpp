@@ -186,7 +186,7 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
   const Shared& sh = *shared_;
   const FastResolution& res = sh.res;
   const int nr = res.radial, nt = res.zenith;
-  const int na = sh.coarse.thetaCount(), nb = sh.coarse.phiCount();
+  const int nb = sh.coarse.phiCount();
   const int D = sh.coarse.count(), F = sh.fine.count();
   const int NS = nr * nt;
   const std::size_t N = static_cast<std::size_t>(NS) * D;
@@ -536,9 +536,9 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
     }
   });
   };
+  if (!tail.empty() && !tailTable) axpy(1.0f, tail, sum);  // no closure requested: plain sum
   gather(sum, table);
   if (tailTable && !tail.empty()) gather(tail, *tailTable);
-  (void)na;
   const double tGather = seconds(t3);
   say(1.0);
 

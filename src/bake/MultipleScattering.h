@@ -19,8 +19,12 @@
 // forward peak, convolved with the later phase function.
 // The table value is then LM(S, v) = ∫_0^chord σ e^{-σt} ΣJ_n(S + t v, −v) dt.
 //
-// Converged (2 … ∞): the same operator, solved as (I − K) J = J_2 by restarted GMRES with
-// order-independent (fixed-block) inner products, then closed on energy (see the report).
+// Converged (2 … ∞): orders 2 … 18 as above, then the tail X = Σ_{n>18} J_n from
+// (I − K) X = K·J_18 by restarted GMRES (inner products over fixed blocks: thread-count
+// independent), right-preconditioned by an isotropic coarse-space correction (K_c = R·K·P
+// assembled from the stencil, solved by LU): the slow modes of dense particles are smooth,
+// nearly isotropic diffusion modes that plain iteration would need thousands of orders for.
+// The baker then closes the tail's amplitude on energy (ScatteringBaker.cpp).
 #include <array>
 #include <vector>
 

@@ -1,6 +1,8 @@
 #pragma once
 // The suites `cloudlut bench` runs; each measures speed and accuracy against an independent
 // reference and appends rows to the report.
+#include <filesystem>
+
 #include "cli/BenchReport.h"
 #include "core/Progress.h"
 
@@ -16,5 +18,13 @@ struct BenchOptions {
 // samples-per-diameter values, against a 4096-sample integration of the same particle; every
 // density model at its default.
 void benchOpticalDepth(BenchReport& report, const BenchOptions& options);
+
+// Renderer II: cloudscapes per quality preset and blend mode, ms per stage (generation,
+// occlusion, shading + blending, upscale) and frame-to-frame stability (src/cli/RenderBench.cpp).
+void benchRender(BenchReport& report, const BenchOptions& options);
+
+// Ground truth (GroundTruthBench.cpp): every rendering method on data/bench_scenes, time against
+// error relative to the path-traced reference; references and LUTs cached under `out`.
+void benchGroundTruth(BenchReport& report, const BenchOptions& options, const std::filesystem::path& out);
 
 }  // namespace cloudlut::cli

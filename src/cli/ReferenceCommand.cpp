@@ -16,6 +16,9 @@
 #include "reference/SphereMonteCarlo.h"
 
 namespace cloudlut::cli {
+
+int runReferenceScene(int argc, char** argv);  // ReferenceSceneCommand.cpp
+
 namespace {
 
 std::string formatValue(double v) {
@@ -25,9 +28,11 @@ std::string formatValue(double v) {
 }
 
 int runReference(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "scene") return runReferenceScene(argc - 1, argv + 1);
   cxxopts::Options options("cloudlut reference",
                            "Monte Carlo reference radiance for the homogeneous unit sphere.\n"
                            "  cloudlut reference sphere --csv IN [--out OUT] ...\n"
+                           "  cloudlut reference scene --particles FILE.json ...  (a particle scene; see its --help)\n"
                            "Writes the input columns, then single,single_se,multiple18,multiple18_se,"
                            "multiple_all,multiple_all_se (radiance per unit sun irradiance, sr^-1; "
                            "single includes the first phase function).");
@@ -114,7 +119,7 @@ int runReference(int argc, char** argv) {
   return kExitOk;
 }
 
-const CommandRegistration registration("reference", "Monte Carlo reference for the homogeneous sphere",
+const CommandRegistration registration("reference", "Monte Carlo reference: the homogeneous sphere, or a particle scene",
                                        runReference);
 
 }  // namespace

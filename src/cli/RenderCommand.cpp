@@ -1,5 +1,7 @@
-// `cloudlut render`: renders a particle scene from a LUT directory with OpenGL 4.5 (headless,
-// OSMesa) into a PNG (tone-mapped sRGB) or an EXR (linear radiance, alpha, distance).
+// `cloudlut render`: renders a particle scene (--particles FILE) or a procedural cloudscape
+// (--scene PRESET|FILE; the default cloudscape without either) from a LUT directory with OpenGL
+// 4.5 (headless, OSMesa) into a PNG (tone-mapped sRGB) or an EXR (linear radiance, alpha,
+// distance); --frames N writes a numbered sequence along a slow camera path.
 // Everything is validated before the tables are read or anything is rendered; the image is
 // written through a temporary file and a rename.
 #include <algorithm>
@@ -12,6 +14,7 @@
 
 #include "cli/Command.h"
 #include "cli/Options.h"
+#include "cli/SceneCli.h"
 #include "core/Errors.h"
 #include "io/LutIo.h"
 #include "render/GlContext.h"
@@ -61,6 +64,13 @@ unsigned parseTerms(const std::string& text) {
   return terms;
 }
 
+// OUT with "_NNNN" before the extension (frame sequences).
+fs::path framePath(const fs::path& out, int frame) {
+  char number[16];
+  std::snprintf(number, sizeof number, "_%04d", frame);
+  return out.parent_path() / (out.stem().string() + number + out.extension().string());
+}
+
 std::string lowerExtension(const fs::path& p) {
   std::string e = p.extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -74,6 +84,15 @@ int runRender(int argc, char** argv) {
   options.add_options()
     ("luts", "LUT directory (optical_depth, single_scattering, multiple_scattering)", cxxopts::value<std::string>())
     ("particles", "scene file (JSON, docs/SCENE_FORMAT.md)", cxxopts::value<std::string>())
+    ("scene", "cloudscape preset (fair_weather_cumulus, stratocumulus, overcast, cumulus_congestus) or file; default fair_weather_cumulus", cxxopts::value<std::string>())
+    ("quality", "cloudscape grid: low 104^2x4x2, medium 136^2x4x4, high 184^2x4x6", cxxopts::value<std::string>()->default_value("medium"))
+    ("blend", "alpha or volume (default: volume for cloudscapes, alpha for --particles)", cxxopts::value<std::string>())
+    ("downscale", "render the particles at 1/N resolution (1, 2, 4) and upscale (bilateral)", cxxopts::value<int>()->default_value("1"))
+    ("frames", "write N frames OUT_0000.png ... along a slow forward move with a yaw", cxxopts::value<int>()->default_value("1"))
+    ("speed", "--frames: metres per frame", cxxopts::value<double>()->default_value("40"))
+    ("yaw", "--frames: degrees of yaw per frame", cxxopts::value<double>()->default_value("0.2"))
+    ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel", cxxopts::value<int>()->default_value("16"))
+    ("no-occlusion", "constant sunlight (no light-space occlusion)")
     ("out", "output image: FILE.png (tone-mapped sRGB) or FILE.exr (linear RGB, A = 1 - transmittance, Z)", cxxopts::value<std::string>())
     ("width", "image width in pixels", cxxopts::value<long long>()->default_value("640"))
     ("height", "image height in pixels", cxxopts::value<long long>()->default_value("360"))
@@ -87,10 +106,14 @@ int runRender(int argc, char** argv) {
     ("exposure", "PNG tone mapping: 1 - exp(-exposure * radiance)", cxxopts::value<double>()->default_value("5"))
     ("terms", "lighting terms: single, multiple, ambient, all (comma-separated)", cxxopts::value<std::string>()->default_value("all"))
     ("quiet", "print nothing on success");
+  addRayMarchOptions(options);  // --method raymarch: cli/SceneCli.h
   cxxopts::ParseResult args;
   if (!parseOptions(options, argc, argv, args)) return kExitOk;
-  for (const char* required : {"luts", "particles", "out"})
+  if (wantsRayMarch(args)) return runRayMarchRender(args);
+  for (const char* required : {"luts", "out"})
     if (!args.count(required)) throw UsageError(std::string("missing --") + required);
+  const bool particles = args.count("particles") > 0;
+  if (particles && args.count("scene")) throw UsageError("give either --particles or --scene, not both");
 
   const fs::path out = args["out"].as<std::string>();
   const std::string ext = lowerExtension(out);
@@ -118,8 +141,33 @@ int runRender(int argc, char** argv) {
   settings.width = static_cast<int>(width);
   settings.height = static_cast<int>(height);
   settings.terms = parseTerms(args["terms"].as<std::string>());
+  settings.blend = args.count("blend") ? render::parseBlendMode(args["blend"].as<std::string>())
+                                       : particles ? render::BlendMode::Alpha : render::BlendMode::Volume;
+  settings.downscale = args["downscale"].as<int>();
+  if (settings.downscale != 1 && settings.downscale != 2 && settings.downscale != 4)
+    throw UsageError("--downscale: expected 1, 2 or 4");
+  settings.fragmentsPerPixel = args["fragments-per-pixel"].as<int>();
+  if (settings.fragmentsPerPixel < 1 || settings.fragmentsPerPixel > 1024)
+    throw UsageError("--fragments-per-pixel: expected 1 to 1024");
+  settings.occlusion = args.count("no-occlusion") == 0;
+  const int frames = args["frames"].as<int>();
+  if (frames < 1 || frames > 100000) throw UsageError("--frames: expected 1 to 100000");
+  const double speed = args["speed"].as<double>(), yaw = args["yaw"].as<double>();
+  if (!std::isfinite(speed) || !std::isfinite(yaw)) throw UsageError("--speed/--yaw: expected finite numbers");
+  const render::QualityPreset quality = render::qualityPreset(args["quality"].as<std::string>());
 
-  const render::Scene scene = render::readScene(args["particles"].as<std::string>());
+  // The scene: explicit particles, or a cloudscape preset / file (the default one embedded).
+  render::Scene scene;
+  render::CloudscapeScene cloudscape;
+  if (particles) {
+    scene = render::readScene(args["particles"].as<std::string>());
+  } else {
+    cloudscape = render::loadCloudscape(args.count("scene") ? args["scene"].as<std::string>()
+                                                            : std::string(render::kDefaultCloudscape));
+    scene.view = cloudscape.view;
+    if (!scene.view.target && !overrides.target) scene.view.target = glm::vec3(0.0f, 1500.0f, -6000.0f);
+    if (!scene.view.eye && !overrides.eye) scene.view.eye = glm::vec3(0.0f, 600.0f, 0.0f);
+  }
   settings.view = render::resolveView(scene, overrides);
   const io::LutSet luts = io::readLutSet(args["luts"].as<std::string>());
 
@@ -127,17 +175,24 @@ int runRender(int argc, char** argv) {
   const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
   render::Renderer renderer(*context, luts);
   const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  render::RenderStats stats;
-  const render::Image image = renderer.render(scene.particles, settings, &stats);
-  if (const std::size_t bad = image.nonFiniteCount())
-    throw std::runtime_error("the render holds " + std::to_string(bad) + " non-finite values (tables out of range?)");
-
-  if (ext == ".png") render::writePng(image, out, settings.view.lighting.skyColor, static_cast<float>(exposure));
-  else render::writeExr(image, out);
-  if (!args.count("quiet"))
-    std::printf("wrote %s: %dx%d, %zu particles, render %.1f ms (setup %.1f ms, %s)\n", out.c_str(), image.width,
-                image.height, scene.particles.size(), 1e3 * stats.renderSeconds, 1e3 * setupSeconds,
-                context->description().c_str());
+  const render::Camera start = settings.view.camera;
+  for (int frame = 0; frame < frames; ++frame) {
+    settings.view.camera = render::cameraOnPath(start, frame, static_cast<float>(speed), static_cast<float>(yaw));
+    render::RenderStats stats;
+    const render::Image image = particles ? renderer.render(scene.particles, settings, &stats)
+                                          : renderer.renderCloudscape(cloudscape.cloud, quality, settings, &stats);
+    if (const std::size_t bad = image.nonFiniteCount())
+      throw std::runtime_error("the render holds " + std::to_string(bad) + " non-finite values (tables out of range?)");
+    const fs::path file = frames > 1 ? framePath(out, frame) : out;
+    if (ext == ".png") render::writePng(image, file, settings.view.lighting.skyColor, static_cast<float>(exposure));
+    else render::writeExr(image, file);
+    if (!args.count("quiet"))
+      std::printf("wrote %s: %dx%d, %zu particles, %s blending, generate %.1f ms, occlusion %.1f ms, render %.1f ms "
+                  "(setup %.1f ms, %s)\n",
+                  file.c_str(), image.width, image.height, stats.particles, render::toString(settings.blend),
+                  1e3 * stats.generateSeconds, 1e3 * stats.occlusionSeconds, 1e3 * stats.renderSeconds,
+                  1e3 * setupSeconds, context->description().c_str());
+  }
   return kExitOk;
 }
 

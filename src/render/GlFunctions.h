@@ -68,7 +68,20 @@ namespace cloudlut::render {
   X(PFNGLBINDBUFFERPROC, BindBuffer)                              \
   X(PFNGLBUFFERDATAPROC, BufferData)                              \
   X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                      \
-  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)
+  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)             \
+  X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                    \
+  X(PFNGLDISPATCHCOMPUTEINDIRECTPROC, DispatchComputeIndirect)    \
+  X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                        \
+  X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                  \
+  X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                        \
+  X(PFNGLTEXSTORAGE2DPROC, TexStorage2D)                          \
+  X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                        \
+  X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)                  \
+  X(PFNGLCLEARBUFFERDATAPROC, ClearBufferData)                    \
+  X(PFNGLUNIFORM1UIPROC, Uniform1ui)                              \
+  X(PFNGLUNIFORM2IPROC, Uniform2i)                                \
+  X(PFNGLUNIFORM4FVPROC, Uniform4fv)                              \
+  X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)
 
 struct GlFunctions {
 #define CLOUDLUT_GL_MEMBER(type, name) type name = nullptr;

@@ -6,12 +6,15 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <cstring>
 #include <numeric>
 
+#include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/Errors.h"
 #include "core/TableLookup.h"
+#include "render/CloudscapeGrid.h"
 #include "render/GlFunctions.h"
 #include "render/ShaderSources.h"
 
@@ -52,7 +55,63 @@ const Table4D& requireTable(const io::LutSet& luts, const std::string& name) {
   return it->second.table;
 }
 
+// Edge-preserving upscale of a low-resolution particle image (seed §5.4): each output pixel
+// blends the four nearest low-resolution samples with bilinear weights times a depth
+// similarity to the nearest sample (distance to the first matter), so that a cloud's edge
+// against the sky or against a farther cloud stays sharp. Distances are taken from the nearest
+// sample.
+Image upscaleBilateral(const Image& low, int width, int height) {
+  Image out;
+  out.width = width;
+  out.height = height;
+  out.rgba.assign(static_cast<std::size_t>(width) * height * 4, 0.0f);
+  out.distance.assign(static_cast<std::size_t>(width) * height, std::numeric_limits<float>::infinity());
+  const float sx = static_cast<float>(low.width) / static_cast<float>(width);
+  const float sy = static_cast<float>(low.height) / static_cast<float>(height);
+  auto similarity = [](float d, float ref) {
+    const bool di = std::isinf(d), ri = std::isinf(ref);
+    if (di || ri) return di == ri ? 1.0f : 1e-3f;
+    const float rel = std::abs(d - ref) / (0.05f * std::max(ref, 1e-6f));
+    return 1.0f / (1.0f + rel * rel);
+  };
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float fx = (static_cast<float>(x) + 0.5f) * sx - 0.5f, fy = (static_cast<float>(y) + 0.5f) * sy - 0.5f;
+      const int nx = std::clamp(static_cast<int>(std::lround(fx)), 0, low.width - 1);
+      const int ny = std::clamp(static_cast<int>(std::lround(fy)), 0, low.height - 1);
+      const float ref = low.distanceAt(nx, ny);
+      const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
+      const float ax = fx - static_cast<float>(x0), ay = fy - static_cast<float>(y0);
+      float acc[4] = {0, 0, 0, 0}, wsum = 0.0f;
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+          const int px = std::clamp(x0 + i, 0, low.width - 1), py = std::clamp(y0 + j, 0, low.height - 1);
+          const float w = (i ? ax : 1.0f - ax) * (j ? ay : 1.0f - ay) * similarity(low.distanceAt(px, py), ref) + 1e-12f;
+          const float* c = low.pixel(px, py);
+          for (int k = 0; k < 4; ++k) acc[k] += w * c[k];
+          wsum += w;
+        }
+      float* o = &out.rgba[4 * (static_cast<std::size_t>(y) * width + x)];
+      for (int k = 0; k < 4; ++k) o[k] = acc[k] / wsum;
+      out.distance[static_cast<std::size_t>(y) * width + x] = ref;
+    }
+  return out;
+}
+
 }  // namespace
+
+long double volumePoolBytes(int width, int height, int fragmentsPerPixel) {
+  return 16.0L + 28.0L * static_cast<long double>(width) * static_cast<long double>(height) *
+                     static_cast<long double>(fragmentsPerPixel);
+}
+
+BlendMode parseBlendMode(const std::string& text) {
+  if (text == "alpha") return BlendMode::Alpha;
+  if (text == "volume") return BlendMode::Volume;
+  throw UsageError("--blend: expected alpha or volume, got '" + text + "'");
+}
+
+const char* toString(BlendMode mode) { return mode == BlendMode::Volume ? "volume" : "alpha"; }
 
 std::size_t Image::nonFiniteCount() const {
   return static_cast<std::size_t>(
@@ -93,6 +152,14 @@ struct Renderer::Impl {
   GLuint program = 0;
   GLuint vao = 0;
   GLuint particleBuffer = 0;
+  // Compute programs: generation stages 0-2, bitonic sort, occlusion stages 0-3, volume resolve.
+  GLuint generatePrograms[3] = {0, 0, 0};
+  GLuint sortProgram = 0;
+  GLuint occlusionPrograms[4] = {0, 0, 0, 0};
+  GLuint resolveProgram = 0;
+  // Buffers: sort keys (binding 1), fragments (2), tiles (3), raw sunlight (4), generation (6).
+  GLuint keysBuffer = 0, fragBuffer = 0, tilesBuffer = 0, rawSunBuffer = 0, genBuffer = 0;
+  GLint64 maxStorage = 0;
   TableTexture opticalDepth, single, multiple;
   float unitOpticalRadius = 0;
   int firstPhaseKind = 2;
@@ -123,6 +190,9 @@ struct Renderer::Impl {
     buildProgram();
     gl.GenVertexArrays(1, &vao);
     gl.GenBuffers(1, &particleBuffer);
+    for (GLuint* b : {&keysBuffer, &fragBuffer, &tilesBuffer, &rawSunBuffer, &genBuffer}) gl.GenBuffers(1, b);
+    gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxStorage);
+    buildComputePrograms();
     checkGlError(gl, "creating the renderer");
   }
 
@@ -140,6 +210,12 @@ struct Renderer::Impl {
     const GLuint textures[] = {opticalDepth.texture, single.texture, multiple.texture};
     gl.DeleteTextures(3, textures);
     gl.DeleteBuffers(1, &particleBuffer);
+    for (GLuint b : {keysBuffer, fragBuffer, tilesBuffer, rawSunBuffer, genBuffer}) gl.DeleteBuffers(1, &b);
+    for (GLuint p : generatePrograms) gl.DeleteProgram(p);
+    for (GLuint p : occlusionPrograms) gl.DeleteProgram(p);
+    gl.DeleteProgram(sortProgram);
+    gl.DeleteProgram(resolveProgram);
+    if (dummyHeads) gl.DeleteTextures(1, &dummyHeads);
     gl.DeleteVertexArrays(1, &vao);
     gl.DeleteProgram(program);
   }
@@ -186,7 +262,7 @@ struct Renderer::Impl {
     return t;
   }
 
-  GLuint compile(GLenum type, const std::string& source, bool fragment) {
+  GLuint compile(GLenum type, const std::string& source, bool fragment, const std::string& legend = "") {
     const GLuint shader = gl.CreateShader(type);
     const char* text = source.c_str();
     gl.ShaderSource(shader, 1, &text, nullptr);
@@ -199,8 +275,9 @@ struct Renderer::Impl {
       std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
       gl.GetShaderInfoLog(shader, length, nullptr, log.data());
       gl.DeleteShader(shader);
-      throw GlError(std::string(fragment ? "fragment" : "vertex") + " shader does not compile (" +
-                    shaderFileLegend(fragment) + "):\n" + log.c_str());
+      throw GlError(std::string(type == GL_COMPUTE_SHADER ? "compute" : fragment ? "fragment" : "vertex") +
+                    " shader does not compile (" + (legend.empty() ? shaderFileLegend(fragment) : legend) +
+                    "):\n" + log.c_str());
     }
     return shader;
   }
@@ -225,7 +302,38 @@ struct Renderer::Impl {
     }
   }
 
+  GLuint linkCompute(const std::vector<std::string>& files, const std::string& defines) {
+    const GLuint cs = compile(GL_COMPUTE_SHADER, assembleShader(files, defines), false, shaderFileLegend(files));
+    const GLuint p = gl.CreateProgram();
+    gl.AttachShader(p, cs);
+    gl.LinkProgram(p);
+    gl.DeleteShader(cs);
+    GLint ok = 0;
+    gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      GLint length = 0;
+      gl.GetProgramiv(p, GL_INFO_LOG_LENGTH, &length);
+      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+      gl.GetProgramInfoLog(p, length, nullptr, log.data());
+      throw GlError("compute program " + files.back() + " does not link:\n" + std::string(log.c_str()));
+    }
+    return p;
+  }
+
+  void buildComputePrograms() {
+    for (int stage = 0; stage < 3; ++stage)
+      generatePrograms[stage] =
+          linkCompute({"cloudscape_grid.glsl", "particle_common.glsl", "cloudscape_generate.comp.glsl"},
+                      "#define STAGE " + std::to_string(stage) + "\n");
+    sortProgram = linkCompute({"bitonic_sort.comp.glsl"}, "");
+    for (int stage = 0; stage < 4; ++stage)
+      occlusionPrograms[stage] = linkCompute({"particle_common.glsl", "occlusion.comp.glsl"},
+                                             "#define STAGE " + std::to_string(stage) + "\n");
+    resolveProgram = linkCompute({"volume_resolve.comp.glsl"}, "");
+  }
+
   GLint uniform(const char* name) const { return gl.GetUniformLocation(program, name); }
+  GLint uniformOf(GLuint p, const char* name) const { return gl.GetUniformLocation(p, name); }
 
   void bindTable(int unit, const char* sampler, const char* dimsName, const TableTexture& t) {
     gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
@@ -234,30 +342,37 @@ struct Renderer::Impl {
     gl.Uniform4f(uniform(dimsName), t.dims.x, t.dims.y, t.dims.z, t.dims.w);
   }
 
-  Image render(const std::vector<Particle>& particles, const RenderSettings& s, RenderStats* stats) {
-    checkImageSize(s.width, s.height);
-    context.makeCurrent();
-    GLint maxRenderbuffer = 0, viewport[2] = {0, 0};
-    gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
-    gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
-    if (s.width > std::min(maxRenderbuffer, viewport[0]) || s.height > std::min(maxRenderbuffer, viewport[1]))
-      throw UsageError("image size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                       " exceeds this OpenGL's limit of " + std::to_string(std::min(maxRenderbuffer, viewport[0])) +
-                       " pixels per side");
+  void requireStorage(long double bytes, const std::string& what) const {
+    const long double pages = static_cast<long double>(sysconf(_SC_PHYS_PAGES));
+    const long double pageSize = static_cast<long double>(sysconf(_SC_PAGESIZE));
+    const long double budget = pages > 0 && pageSize > 0 ? 0.5L * pages * pageSize : 2.0e9L;
+    const long double limit = std::min(budget, static_cast<long double>(maxStorage));
+    if (bytes > limit)
+      throw UsageError(what + " needs " + std::to_string(static_cast<long long>(bytes / 1048576.0L)) +
+                       " MiB of GPU buffer, more than the " +
+                       std::to_string(static_cast<long long>(limit / 1048576.0L)) +
+                       " MiB this OpenGL (" + context.description() + ") and machine allow");
+  }
 
-    GLint64 maxStorage = 0;
-    gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxStorage);
+  // Sizes a buffer (orphaning it) when it is smaller than `bytes`.
+  void ensureBuffer(GLuint buffer, std::size_t bytes, std::size_t& current) {
+    if (current >= bytes && current <= 2 * bytes + (1u << 20)) return;
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_DRAW);
+    current = bytes;
+  }
+  std::size_t particleBytes = 0, keysBytes = 0, fragBytes = 0, tilesBytes = 0, rawSunBytes = 0, genBytes = 0;
+
+  void barrier() { gl.MemoryBarrier(GL_ALL_BARRIER_BITS); }
+
+  // ---- explicit particles -------------------------------------------------------------------
+  // Uploads the particles (in `order`) as records; returns the far plane that holds them all.
+  float uploadParticles(const std::vector<Particle>& particles, const std::vector<std::size_t>& order,
+                        const glm::vec3& eye) {
     const auto maxParticles = static_cast<std::size_t>(maxStorage) / sizeof(GpuParticle);
     if (particles.size() > maxParticles)
       throw UsageError(std::to_string(particles.size()) + " particles exceed this OpenGL's shader storage limit of " +
                        std::to_string(maxParticles) + " particles per render");
-
-    const CameraFrame camera(s.view.camera, s.width, s.height);
-    const glm::vec3 eye = camera.eye();
-
-    // Particle records, back to front, and the depth range that holds every bounding box.
-    const auto t0 = Clock::now();
-    const std::vector<std::size_t> order = backToFrontOrder(particles, eye);
     std::vector<GpuParticle> records(order.size());
     float farthest = 0.0f;
     for (std::size_t k = 0; k < order.size(); ++k) {
@@ -273,46 +388,211 @@ struct Renderer::Impl {
           r.toWorld[c][i] = i < 3 ? w[c][i] : 0.0f;
           r.toParticle[c][i] = i < 3 ? inv[c][i] : 0.0f;
         }
+      r.toWorld[0][3] = 1.0f;  // sunlight until the occlusion pass
+      r.toWorld[1][3] = 1.0f;  // level-of-detail weight
       const float reach = std::sqrt(3.0f) * std::max({p.radii.x, p.radii.y, p.radii.z});
       farthest = std::max(farthest, glm::length(p.center - eye) + reach);
     }
-    const float farPlane = std::max(farthest * 1.01f, 1e-3f);
-    const float nearPlane = farPlane * 1e-6f;
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, particleBuffer);
     gl.BufferData(GL_SHADER_STORAGE_BUFFER,
                   static_cast<GLsizeiptr>(std::max<std::size_t>(records.size(), 1) * sizeof(GpuParticle)),
-                  records.empty() ? nullptr : records.data(), GL_STREAM_DRAW);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer);
-    if (stats) stats->uploadSeconds = secondsSince(t0);
+                  records.empty() ? nullptr : records.data(), GL_DYNAMIC_DRAW);
+    particleBytes = std::max<std::size_t>(records.size(), 1) * sizeof(GpuParticle);
+    return std::max(farthest * 1.01f, 1e-3f);
+  }
 
-    // Float framebuffer: radiance + transmittance, and distance.
-    GLuint fbo = 0, colour[2] = {0, 0};
+  // ---- GPU generation -----------------------------------------------------------------------
+  struct Generated {
+    std::size_t count = 0, cells = 0;
+    float farPlane = 1.0f;
+  };
+
+  Generated generate(const CloudType& cloud, const QualityPreset& q, const RenderSettings& s, bool sortKeys) {
+    const GridParameters g = gridParameters(cloud, q);
+    const std::size_t capacity = static_cast<std::size_t>(q.maxParticles());
+    std::size_t pow2 = 1;
+    while (pow2 < capacity) pow2 <<= 1;
+    const std::string what = "quality '" + q.name + "' (" + std::to_string(q.ringDim) + "^2 x " +
+                             std::to_string(q.rings) + " x " + std::to_string(q.layers) + " = " +
+                             std::to_string(capacity) + " particle slots)";
+    requireStorage(static_cast<long double>(capacity) * sizeof(GpuParticle), what);
+    requireStorage(static_cast<long double>(pow2) * 8.0L, what + " sort keys");
+    requireStorage(32.0L + 16.0L * static_cast<long double>(q.cellCount()), what + " cell list");
+    ensureBuffer(particleBuffer, capacity * sizeof(GpuParticle), particleBytes);
+    ensureBuffer(keysBuffer, pow2 * 8, keysBytes);
+    ensureBuffer(genBuffer, 32 + 16 * static_cast<std::size_t>(q.cellCount()), genBytes);
+
+    // Reset the counters; pad the keys with distance -1 (sorts last).
+    const GLuint header[8] = {0, 0, static_cast<GLuint>(capacity), 0, 0, 1, 1, 0};
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, genBuffer);
+    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof header, header);
+    float minusOne = -1.0f;
+    GLuint pad[2] = {0, 0xffffffffu};
+    std::memcpy(&pad[0], &minusOne, sizeof minusOne);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, keysBuffer);
+    gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, pad);
+
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, keysBuffer);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, genBuffer);
+    const Frustum fr = cameraFrustum(s.view.camera, s.width, s.height);
+    const glm::vec3 eye = s.view.camera.eye;
+    for (int stage = 0; stage < 3; ++stage) {
+      const GLuint p = generatePrograms[stage];
+      gl.UseProgram(p);
+      gl.Uniform4fv(uniformOf(p, "uG0"), 1, glm::value_ptr(g.g0));
+      gl.Uniform4fv(uniformOf(p, "uG1"), 1, glm::value_ptr(g.g1));
+      gl.Uniform4fv(uniformOf(p, "uG2"), 1, glm::value_ptr(g.g2));
+      gl.Uniform4fv(uniformOf(p, "uG3"), 1, glm::value_ptr(g.g3));
+      gl.Uniform3f(uniformOf(p, "uEye"), eye.x, eye.y, eye.z);
+      gl.Uniform4fv(uniformOf(p, "uPlanes"), 5, glm::value_ptr(fr.planes[0]));
+      if (stage == 0) {
+        gl.DispatchCompute(static_cast<GLuint>((q.cellCount() + 63) / 64), 1, 1);
+      } else if (stage == 1) {
+        gl.DispatchCompute(1, 1, 1);
+      } else {
+        gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, genBuffer);
+        gl.DispatchComputeIndirect(16);
+        gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+      }
+      barrier();
+    }
+    GLuint counts[4] = {0, 0, 0, 0};
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, genBuffer);
+    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counts, counts);
+    checkGlError(gl, "generating the cloudscape");
+    Generated out;
+    out.cells = counts[0];
+    out.count = std::min<std::size_t>(counts[1], capacity);
+    const glm::vec2 maxR = grid::cgMaxRadii(q.rings - 1, g.g0, g.g1, g.g2);
+    out.farPlane = g.g3.y + 2.0f * std::max(maxR.x, maxR.y) + 1.0f;
+
+    if (sortKeys && out.count > 1) {
+      std::size_t n = 1;
+      while (n < out.count) n <<= 1;
+      gl.UseProgram(sortProgram);
+      gl.Uniform1ui(uniformOf(sortProgram, "uCount"), static_cast<GLuint>(n));
+      const GLint uK = uniformOf(sortProgram, "uK"), uJ = uniformOf(sortProgram, "uJ");
+      for (std::size_t k = 2; k <= n; k <<= 1)
+        for (std::size_t j = k >> 1; j > 0; j >>= 1) {
+          gl.Uniform1ui(uK, static_cast<GLuint>(k));
+          gl.Uniform1ui(uJ, static_cast<GLuint>(j));
+          gl.DispatchCompute(static_cast<GLuint>((n + 63) / 64), 1, 1);
+          gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+      barrier();
+    }
+    return out;
+  }
+
+  // ---- occlusion (seed §5.3) ----------------------------------------------------------------
+  void occlude(std::size_t count, const RenderSettings& s, RenderStats* stats) {
+    if (!s.occlusion || count == 0) return;
+    const std::size_t headerBytes = 32 + 4 * kLightTiles * kLightTiles;
+    const std::size_t nodeCapacity =
+        std::min<std::size_t>(std::max<std::size_t>(count * 16, 1u << 18),
+                              (static_cast<std::size_t>(maxStorage) - headerBytes) / 8);
+    ensureBuffer(tilesBuffer, headerBytes + nodeCapacity * 8, tilesBytes);
+    ensureBuffer(rawSunBuffer, count * 4, rawSunBytes);
+    std::vector<GLuint> header(headerBytes / 4, 0xffffffffu);
+    const GLint bounds[4] = {std::numeric_limits<GLint>::max(), std::numeric_limits<GLint>::max(),
+                             std::numeric_limits<GLint>::min(), std::numeric_limits<GLint>::min()};
+    std::memcpy(header.data(), bounds, sizeof bounds);
+    header[4] = 0;
+    header[5] = static_cast<GLuint>(nodeCapacity);
+    header[6] = 0;
+    header[7] = 0;
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, tilesBuffer);
+    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(headerBytes), header.data());
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, tilesBuffer);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, rawSunBuffer);
+    const glm::vec3 sun = glm::normalize(s.view.lighting.sunDirection);
+    const glm::vec3 helper = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::vec3 u = glm::normalize(glm::cross(helper, sun)), v = glm::cross(sun, u);
+    for (int stage = 0; stage < 4; ++stage) {
+      const GLuint p = occlusionPrograms[stage];
+      gl.UseProgram(p);
+      gl.Uniform1ui(uniformOf(p, "uCount"), static_cast<GLuint>(count));
+      gl.Uniform3f(uniformOf(p, "uSun"), sun.x, sun.y, sun.z);
+      gl.Uniform3f(uniformOf(p, "uLightU"), u.x, u.y, u.z);
+      gl.Uniform3f(uniformOf(p, "uLightV"), v.x, v.y, v.z);
+      gl.Uniform1f(uniformOf(p, "uSigma"), unitOpticalRadius);
+      gl.Uniform1f(uniformOf(p, "uXi"), kOcclusionXi);
+      gl.Uniform1i(uniformOf(p, "uSmooth"), s.smoothOcclusion ? 1 : 0);
+      gl.DispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
+      barrier();
+    }
+    if (stats) {
+      GLuint counters[4] = {0, 0, 0, 0};
+      gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, tilesBuffer);
+      gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 16, sizeof counters, counters);
+      stats->tileOverflow = counters[2];
+    }
+    checkGlError(gl, "light-space occlusion");
+  }
+
+  // ---- drawing, blending, read-back, upscale ------------------------------------------------
+  Image draw(std::size_t count, bool useOrder, float farPlane, const RenderSettings& s, RenderStats* stats) {
+    const int w = (s.width + s.downscale - 1) / s.downscale, h = (s.height + s.downscale - 1) / s.downscale;
+    GLint maxRenderbuffer = 0, viewport[2] = {0, 0};
+    gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+    gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+    if (w > std::min(maxRenderbuffer, viewport[0]) || h > std::min(maxRenderbuffer, viewport[1]))
+      throw UsageError("image size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                       " exceeds this OpenGL's limit of " + std::to_string(std::min(maxRenderbuffer, viewport[0])) +
+                       " pixels per side");
+    const bool volume = s.blend == BlendMode::Volume;
+    std::size_t fragCapacity = 0;
+    if (volume) {
+      const long double bytes = volumePoolBytes(w, h, s.fragmentsPerPixel);
+      requireStorage(bytes, "volume blending at " + std::to_string(w) + "x" + std::to_string(h) + " with " +
+                                std::to_string(s.fragmentsPerPixel) + " fragments per pixel (try --downscale 2)");
+      fragCapacity = static_cast<std::size_t>(w) * h * static_cast<std::size_t>(s.fragmentsPerPixel);
+      ensureBuffer(fragBuffer, 16 + fragCapacity * 28, fragBytes);
+      const GLuint header[4] = {0, static_cast<GLuint>(fragCapacity), 0, 0};
+      gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, fragBuffer);
+      gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof header, header);
+    }
+
+    // Float framebuffer: radiance + transmittance (a texture, for the resolve), and distance;
+    // the heads of the volume lists.
+    GLuint fbo = 0, colourTex = 0, distanceRb = 0, headsTex = 0;
     gl.GenFramebuffers(1, &fbo);
     gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    gl.GenRenderbuffers(2, colour);
-    const GLenum storage[2] = {GL_RGBA32F, GL_R32F};
-    for (int i = 0; i < 2; ++i) {
-      gl.BindRenderbuffer(GL_RENDERBUFFER, colour[i]);
-      gl.RenderbufferStorage(GL_RENDERBUFFER, storage[i], s.width, s.height);
-      gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i), GL_RENDERBUFFER,
-                                 colour[i]);
+    gl.GenTextures(1, &colourTex);
+    gl.BindTexture(GL_TEXTURE_2D, colourTex);
+    gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colourTex, 0);
+    gl.GenRenderbuffers(1, &distanceRb);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, distanceRb);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_R32F, w, h);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, distanceRb);
+    if (volume) {
+      gl.GenTextures(1, &headsTex);
+      gl.BindTexture(GL_TEXTURE_2D, headsTex);
+      gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_R32UI, w, h);
+      const GLuint nil = 0xffffffffu;
+      gl.ClearTexImage(headsTex, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
+      gl.BindImageTexture(0, headsTex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     }
     struct Cleanup {
       const GlFunctions& gl;
-      GLuint& fbo;
-      GLuint* colour;
+      GLuint fbo, colourTex, distanceRb, headsTex;
       ~Cleanup() {
         gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
         gl.DeleteFramebuffers(1, &fbo);
-        gl.DeleteRenderbuffers(2, colour);
+        gl.DeleteTextures(1, &colourTex);
+        if (headsTex) gl.DeleteTextures(1, &headsTex);
+        gl.DeleteRenderbuffers(1, &distanceRb);
       }
-    } cleanup{gl, fbo, colour};
+    } cleanup{gl, fbo, colourTex, distanceRb, headsTex};
     const GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
       throw GlError("the float framebuffer (RGBA32F + R32F) is not complete on " + context.description());
     const GLenum drawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     gl.DrawBuffers(2, drawBuffers);
-    gl.Viewport(0, 0, s.width, s.height);
+    gl.Viewport(0, 0, w, h);
     const float clearColour[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     const float clearDistance[4] = {kNoDistance, 0.0f, 0.0f, 0.0f};
     gl.ClearBufferfv(GL_COLOR, 0, clearColour);
@@ -328,7 +608,11 @@ struct Renderer::Impl {
     gl.BlendEquationi(1, GL_MIN);
 
     gl.UseProgram(program);
-    const glm::mat4 viewProjection = camera.projectionMatrix(nearPlane, farPlane) * camera.viewMatrix();
+    Camera camera = s.view.camera;
+    const CameraFrame frame(camera, w, h);
+    const glm::vec3 eye = frame.eye();
+    const float nearPlane = farPlane * 1e-6f;
+    const glm::mat4 viewProjection = frame.projectionMatrix(nearPlane, farPlane) * frame.viewMatrix();
     gl.UniformMatrix4fv(uniform("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
     const Lighting& light = s.view.lighting;
     gl.Uniform3f(uniform("uEye"), eye.x, eye.y, eye.z);
@@ -348,34 +632,74 @@ struct Renderer::Impl {
     gl.Uniform1f(uniform("uAmbientEdgeDarkening"), kAmbientEdgeDarkening);
     gl.Uniform1f(uniform("uMinOpacityForDistance"), kMinOpacityForDistance);
     gl.Uniform1f(uniform("uNoDistance"), kNoDistance);
+    gl.Uniform1i(uniform("uUseOrder"), useOrder ? 1 : 0);
+    gl.Uniform1i(uniform("uVolume"), volume ? 1 : 0);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer);
+    if (keysBytes == 0) ensureBuffer(keysBuffer, 64, keysBytes);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, keysBuffer);
+    if (fragBytes == 0) ensureBuffer(fragBuffer, 64, fragBytes);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, fragBuffer);
+    if (!volume) {
+      // The fragment shader declares the head image; bind a harmless one-texel target.
+      if (!dummyHeads) {
+        gl.GenTextures(1, &dummyHeads);
+        gl.BindTexture(GL_TEXTURE_2D, dummyHeads);
+        gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_R32UI, 1, 1);
+      }
+      gl.BindImageTexture(0, dummyHeads, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    }
 
     const auto t1 = Clock::now();
     gl.BindVertexArray(vao);
-    if (!records.empty()) gl.DrawArraysInstanced(GL_TRIANGLES, 0, 36, static_cast<GLsizei>(records.size()));
+    if (count > 0) gl.DrawArraysInstanced(GL_TRIANGLES, 0, 36, static_cast<GLsizei>(count));
     gl.Finish();
     checkGlError(gl, "rendering the particles");
-    if (stats) stats->renderSeconds = secondsSince(t1);
+    if (volume) {
+      const auto t3 = Clock::now();
+      barrier();
+      gl.UseProgram(resolveProgram);
+      gl.BindImageTexture(0, headsTex, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+      gl.BindImageTexture(1, colourTex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+      gl.Uniform2i(uniformOf(resolveProgram, "uSize"), w, h);
+      gl.DispatchCompute(static_cast<GLuint>((w + 7) / 8), static_cast<GLuint>((h + 7) / 8), 1);
+      barrier();
+      gl.Finish();
+      checkGlError(gl, "resolving the volume fragment lists");
+      if (stats) {
+        stats->resolveSeconds = secondsSince(t3);
+        GLuint counters[4] = {0, 0, 0, 0};
+        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, fragBuffer);
+        gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counters, counters);
+        stats->fragments = counters[0];
+        stats->fragmentOverflow = counters[2];
+        stats->truncatedPixels = counters[3];
+      }
+    }
+    if (stats) {
+      stats->renderSeconds = secondsSince(t1);
+      stats->particles = count;
+    }
 
     // Read back, flip to top-first rows, and turn transmittance into alpha.
     const auto t2 = Clock::now();
-    const std::size_t pixels = static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height);
+    const std::size_t pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     std::vector<float> colourData(pixels * 4), distanceData(pixels);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
     gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl.ReadPixels(0, 0, s.width, s.height, GL_RGBA, GL_FLOAT, colourData.data());
+    gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, colourData.data());
     gl.ReadBuffer(GL_COLOR_ATTACHMENT1);
-    gl.ReadPixels(0, 0, s.width, s.height, GL_RED, GL_FLOAT, distanceData.data());
+    gl.ReadPixels(0, 0, w, h, GL_RED, GL_FLOAT, distanceData.data());
     checkGlError(gl, "reading the image back");
 
     Image image;
-    image.width = s.width;
-    image.height = s.height;
+    image.width = w;
+    image.height = h;
     image.rgba.resize(pixels * 4);
     image.distance.resize(pixels);
-    const std::size_t w = static_cast<std::size_t>(s.width);
-    for (int y = 0; y < s.height; ++y) {
-      const std::size_t src = static_cast<std::size_t>(s.height - 1 - y) * w, dst = static_cast<std::size_t>(y) * w;
-      for (std::size_t x = 0; x < w; ++x) {
+    const std::size_t ww = static_cast<std::size_t>(w);
+    for (int y = 0; y < h; ++y) {
+      const std::size_t src = static_cast<std::size_t>(h - 1 - y) * ww, dst = static_cast<std::size_t>(y) * ww;
+      for (std::size_t x = 0; x < ww; ++x) {
         const float* c = &colourData[4 * (src + x)];
         float* o = &image.rgba[4 * (dst + x)];
         o[0] = c[0];
@@ -387,7 +711,106 @@ struct Renderer::Impl {
       }
     }
     if (stats) stats->readbackSeconds = secondsSince(t2);
+    if (s.downscale > 1) {
+      const auto t4 = Clock::now();
+      image = upscaleBilateral(image, s.width, s.height);
+      if (stats) stats->upscaleSeconds = secondsSince(t4);
+    }
     return image;
+  }
+  GLuint dummyHeads = 0;
+
+  void validate(const RenderSettings& s) {
+    checkImageSize(s.width, s.height);
+    if (s.downscale != 1 && s.downscale != 2 && s.downscale != 4)
+      throw UsageError("--downscale: expected 1, 2 or 4, got " + std::to_string(s.downscale));
+    if (s.fragmentsPerPixel < 1 || s.fragmentsPerPixel > 1024)
+      throw UsageError("fragments per pixel: expected 1 to 1024, got " + std::to_string(s.fragmentsPerPixel));
+    context.makeCurrent();
+  }
+
+  Image render(const std::vector<Particle>& particles, const RenderSettings& s, RenderStats* stats) {
+    validate(s);
+    const glm::vec3 eye = s.view.camera.eye;
+    const auto t0 = Clock::now();
+    std::vector<std::size_t> order;
+    if (s.blend == BlendMode::Alpha) {
+      order = backToFrontOrder(particles, eye);
+    } else {  // order-independent: as given
+      order.resize(particles.size());
+      std::iota(order.begin(), order.end(), std::size_t{0});
+    }
+    const float farPlane = uploadParticles(particles, order, eye);
+    if (stats) stats->uploadSeconds = secondsSince(t0);
+    const auto t1 = Clock::now();
+    occlude(particles.size(), s, stats);
+    gl.Finish();
+    if (stats) stats->occlusionSeconds = secondsSince(t1);
+    return draw(particles.size(), false, farPlane, s, stats);
+  }
+
+  Image renderCloudscape(const CloudType& cloud, const QualityPreset& q, const RenderSettings& s, RenderStats* stats) {
+    validate(s);
+    const auto t0 = Clock::now();
+    const bool alpha = s.blend == BlendMode::Alpha;
+    const Generated g = generate(cloud, q, s, alpha);
+    gl.Finish();
+    if (stats) {
+      stats->generateSeconds = secondsSince(t0);
+      stats->validCells = g.cells;
+    }
+    const auto t1 = Clock::now();
+    occlude(g.count, s, stats);
+    gl.Finish();
+    if (stats) stats->occlusionSeconds = secondsSince(t1);
+    return draw(g.count, alpha, g.farPlane, s, stats);
+  }
+
+  std::vector<GpuParticle> readParticles(std::size_t count) {
+    std::vector<GpuParticle> records(count);
+    if (count == 0) return records;
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, particleBuffer);
+    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(GpuParticle)),
+                        records.data());
+    checkGlError(gl, "reading the particles back");
+    return records;
+  }
+
+  CpuGeneration generateOnGpu(const CloudType& cloud, const QualityPreset& q, const RenderSettings& s) {
+    validate(s);
+    const Generated g = generate(cloud, q, s, false);
+    CpuGeneration out;
+    out.validCells = g.cells;
+    for (const GpuParticle& r : readParticles(g.count)) {
+      GridParticle gp;
+      gp.particle.center = {r.centerDensity[0], r.centerDensity[1], r.centerDensity[2]};
+      gp.particle.density = r.centerDensity[3];
+      const glm::vec3 c0(r.toWorld[0][0], r.toWorld[0][1], r.toWorld[0][2]);
+      const glm::vec3 c1(r.toWorld[1][0], r.toWorld[1][1], r.toWorld[1][2]);
+      const glm::vec3 c2(r.toWorld[2][0], r.toWorld[2][1], r.toWorld[2][2]);
+      gp.particle.radii = {glm::length(c0), glm::length(c1), glm::length(c2)};
+      gp.particle.rotation = glm::quat_cast(glm::mat3(c0 / gp.particle.radii.x, c1 / gp.particle.radii.y,
+                                                       c2 / gp.particle.radii.z));
+      gp.weight = r.toWorld[1][3];
+      const int id = static_cast<int>(r.toParticle[0][3]);
+      gp.ring = id / 16;
+      gp.layer = id % 16;
+      gp.cellX = static_cast<int>(r.toParticle[1][3]);
+      gp.cellZ = static_cast<int>(r.toParticle[2][3]);
+      out.particles.push_back(gp);
+    }
+    return out;
+  }
+
+  std::vector<float> sunlight(const std::vector<Particle>& particles, const RenderSettings& s) {
+    validate(s);
+    std::vector<std::size_t> order(particles.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    uploadParticles(particles, order, s.view.camera.eye);
+    occlude(particles.size(), s, nullptr);
+    std::vector<float> out;
+    for (const GpuParticle& r : readParticles(particles.size())) out.push_back(r.toWorld[0][3]);
+    return out;
   }
 };
 
@@ -399,6 +822,20 @@ Renderer::~Renderer() = default;
 Image Renderer::render(const std::vector<Particle>& particles, const RenderSettings& settings,
                        RenderStats* stats) {
   return impl_->render(particles, settings, stats);
+}
+
+Image Renderer::renderCloudscape(const CloudType& cloud, const QualityPreset& quality, const RenderSettings& settings,
+                                 RenderStats* stats) {
+  return impl_->renderCloudscape(cloud, quality, settings, stats);
+}
+
+CpuGeneration Renderer::generateOnGpu(const CloudType& cloud, const QualityPreset& quality,
+                                      const RenderSettings& settings) {
+  return impl_->generateOnGpu(cloud, quality, settings);
+}
+
+std::vector<float> Renderer::sunlight(const std::vector<Particle>& particles, const RenderSettings& settings) {
+  return impl_->sunlight(particles, settings);
 }
 
 }  // namespace cloudlut::render

@@ -19,13 +19,21 @@
 //          distance to the first matter as a fraction of the chord (table channel 1): rays
 //          that meet matter at once (creases, cores) take the full sky light, rays that
 //          graze a particle's thin rim take half of it;
-//   radiance = sunColor · sunlight · (single + multiple) + ambient, sunlight = 1 for now.
-// Blending back to front: C ← radiance + e^{−τ}·C, T ← e^{−τ}·T.
+//   radiance = sunColor · sunlight · (single + multiple) + ambient, sunlight from the light-space
+//          occlusion pass (seed §5.3, shaders/occlusion.comp.glsl; 1 when disabled).
+// Blending, alpha: back to front, C ← radiance + e^{−τ}·C, T ← e^{−τ}·T. Volume (seed §5.5,
+// generalised): per-pixel segment lists resolved exactly (shaders/volume_resolve.comp.glsl).
+//
+// Cloudscapes (renderCloudscape): particles generated on the GPU from a cloud type and a quality
+// preset (render/Cloudscape.h, shaders/cloudscape_generate.comp.glsl), sorted on the GPU
+// (bitonic) for alpha blending; rendered at 1/downscale resolution and upscaled with a
+// depth-aware (bilateral) filter.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "io/LutIo.h"
+#include "render/Cloudscape.h"
 #include "render/GlContext.h"
 #include "render/Scene.h"
 
@@ -37,12 +45,29 @@ inline constexpr float kAmbientEdgeDarkening = 0.5f;
 // Pixels whose closest particle is more transparent than this carry no distance.
 inline constexpr float kMinOpacityForDistance = 1.0f / 256.0f;
 inline constexpr int kMaxImageSide = 16384;
+// Occlusion (seed §5.3): extinction scale of the light-space occlusion, and the tile grid.
+inline constexpr float kOcclusionXi = 0.05f;
+inline constexpr int kLightTiles = 64;
+// Volume blending: segments composited exactly per pixel (volume_resolve.comp.glsl), and the
+// default size of the fragment node pool per pixel of the particle buffer.
+inline constexpr int kMaxSegmentsPerPixel = 32;
+inline constexpr int kDefaultFragmentsPerPixel = 16;
+
+enum class BlendMode { Alpha, Volume };
+// "alpha" / "volume"; UsageError otherwise.
+BlendMode parseBlendMode(const std::string& text);
+const char* toString(BlendMode mode);
 
 struct RenderSettings {
   int width = 640;
   int height = 360;
   View view;
   unsigned terms = kAllTerms;
+  BlendMode blend = BlendMode::Alpha;
+  int downscale = 1;            // particles rendered at 1/downscale resolution (1, 2 or 4), then upscaled
+  bool occlusion = true;        // light-space occlusion (sunlight 1 otherwise)
+  bool smoothOcclusion = true;  // its density-weighted smoothing pass
+  int fragmentsPerPixel = kDefaultFragmentsPerPixel;  // volume: node pool size per low-res pixel
 };
 
 struct Image {
@@ -66,10 +91,23 @@ struct Image {
 void checkImageSize(long long width, long long height);
 
 struct RenderStats {
-  double uploadSeconds = 0;   // particle buffer upload
-  double renderSeconds = 0;   // draw + glFinish
+  double uploadSeconds = 0;     // particle buffer upload (explicit particles)
+  double generateSeconds = 0;   // GPU generation + sort (cloudscapes)
+  double occlusionSeconds = 0;  // light-space tiling, occlusion, smoothing
+  double renderSeconds = 0;     // shading + blending: draw (+ volume resolve), glFinish
+  double resolveSeconds = 0;    // of which the volume resolve
+  double upscaleSeconds = 0;
   double readbackSeconds = 0;
+  std::size_t particles = 0;         // drawn
+  std::size_t validCells = 0;        // cloudscapes: non-empty cells in the frustum
+  std::size_t fragments = 0;         // volume: fragments produced
+  std::size_t fragmentOverflow = 0;  // volume: fragments alpha-blended for want of pool room
+  std::size_t truncatedPixels = 0;   // volume: pixels with more than kMaxSegmentsPerPixel segments
+  std::size_t tileOverflow = 0;      // occlusion: tile-list nodes dropped
 };
+
+// Bytes the volume fragment pool needs for a width × height particle buffer.
+long double volumePoolBytes(int width, int height, int fragmentsPerPixel);
 
 class Renderer {
  public:
@@ -83,6 +121,16 @@ class Renderer {
 
   Image render(const std::vector<Particle>& particles, const RenderSettings& settings,
                RenderStats* stats = nullptr);
+
+  // A procedural cloudscape, generated on the GPU for the settings' camera.
+  Image renderCloudscape(const CloudType& cloud, const QualityPreset& quality, const RenderSettings& settings,
+                         RenderStats* stats = nullptr);
+
+  // The GPU generation alone, read back (for tests against generateCloudscapeCpu).
+  CpuGeneration generateOnGpu(const CloudType& cloud, const QualityPreset& quality, const RenderSettings& settings);
+
+  // Sunlight reaching each particle after the occlusion pass (same order as `particles`).
+  std::vector<float> sunlight(const std::vector<Particle>& particles, const RenderSettings& settings);
 
  private:
   struct Impl;

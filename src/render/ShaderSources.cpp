@@ -14,9 +14,9 @@ const std::vector<std::string> kFragmentFiles = {"cloudlut_geometry.glsl", "clou
                                                  "cloudlut_sampling.glsl", "particle_common.glsl",
                                                  "particle.frag.glsl"};
 
-std::string assemble(const std::vector<std::string>& files) {
+std::string assemble(const std::vector<std::string>& files, const std::string& defines = "") {
   // CLOUDLUT_FN is empty in GLSL (the shared files also default it themselves).
-  std::string source = "#version 450 core\n#define CLOUDLUT_FN\n";
+  std::string source = "#version 450 core\n#define CLOUDLUT_FN\n" + defines;
   for (std::size_t i = 0; i < files.size(); ++i) {
     source += "#line 1 " + std::to_string(i + 1) + "\n";
     source += embeddedShaderFile(files[i]);
@@ -41,8 +41,13 @@ const std::string& embeddedShaderFile(const std::string& name) {
 std::string particleVertexSource() { return assemble(kVertexFiles); }
 std::string particleFragmentSource() { return assemble(kFragmentFiles); }
 
-std::string shaderFileLegend(bool fragment) {
-  const auto& files = fragment ? kFragmentFiles : kVertexFiles;
+std::string assembleShader(const std::vector<std::string>& files, const std::string& defines) {
+  return assemble(files, defines);
+}
+
+std::string shaderFileLegend(bool fragment) { return shaderFileLegend(fragment ? kFragmentFiles : kVertexFiles); }
+
+std::string shaderFileLegend(const std::vector<std::string>& files) {
   std::string legend = "source string 0 is the preamble";
   for (std::size_t i = 0; i < files.size(); ++i)
     legend += ", " + std::to_string(i + 1) + " is " + files[i];

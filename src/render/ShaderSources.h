@@ -1,7 +1,9 @@
 #pragma once
 // The renderer's GLSL, embedded in the binary at build time (EmbedShaders.cmake): the shared
-// lut_formats/glsl files verbatim plus src/render/shaders.
+// lut_formats/glsl files verbatim plus src/render/shaders (and the cloudscape presets,
+// data/presets/*.json, which ride along in the same table).
 #include <string>
+#include <vector>
 
 namespace cloudlut::render {
 
@@ -16,5 +18,9 @@ std::string particleFragmentSource();
 
 // "file number N is NAME" for a program's sources, for error messages.
 std::string shaderFileLegend(bool fragment);
+
+// A program assembled from embedded files the same way, after `defines` (e.g. "#define STAGE 1\n").
+std::string assembleShader(const std::vector<std::string>& files, const std::string& defines = "");
+std::string shaderFileLegend(const std::vector<std::string>& files);
 
 }  // namespace cloudlut::render

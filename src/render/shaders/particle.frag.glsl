@@ -3,7 +3,8 @@
 // from lut_formats/glsl) and particle_common.glsl.
 //
 // Output 0 (RGBA32F, blended ONE/SRC_ALPHA for colour, ZERO/SRC_ALPHA for alpha):
-//   rgb = radiance scattered toward the camera, a = transmittance of the particle;
+//   rgb = radiance scattered toward the camera, a = transmittance of the particle (alpha mode;
+//   in volume mode the segment goes to the pixel's fragment list instead, see uVolume);
 // output 1 (R32F, blended with MIN): distance from the eye to the particle's first matter.
 
 uniform vec3 uEye;
@@ -26,6 +27,16 @@ uniform float uFirstPhaseParam;
 uniform float uAmbientEdgeDarkening; // f(d) = 1 - k * d, d = distance to first matter / chord
 uniform float uMinOpacityForDistance;
 uniform float uNoDistance;
+uniform int uVolume;  // 1: volume-aware blending (store the segment in the pixel's list)
+
+layout(r32ui, binding = 0) uniform coherent uimage2D uHeads;
+layout(std430, binding = 2) buffer Fragments {
+  uint fragCount;
+  uint fragCapacity;
+  uint fragOverflow;
+  uint truncatedPixels;
+  uint nodes[];  // 7 per node: entry, exit, tau, r, g, b, next
+};
 
 in vec3 vWorld;
 flat in int vParticle;
@@ -82,8 +93,25 @@ void main() {
   if ((uTerms & 4) != 0)
     ambient = uSkyColor * (1.0 - transmittance) * (1.0 - uAmbientEdgeDarkening * clamp(od.y, 0.0, 1.0));
 
-  const float sunlight = 1.0;  // sunlight reaching the particle: occlusion comes with Renderer II
-  oColor = vec4(uSunColor * (sunlight * (single + multiple)) + ambient, transmittance);
+  float sunlight = p.toWorld[0].w;  // sunlight reaching the particle (occlusion.comp.glsl)
+  vec3 radiance = uSunColor * (sunlight * (single + multiple)) + ambient;
+  oColor = vec4(radiance, transmittance);
+  if (uVolume != 0) {
+    uint node = atomicAdd(fragCount, 1u);
+    if (node < fragCapacity) {
+      uint base = node * 7u;
+      nodes[base] = floatBitsToUint(tEnter);
+      nodes[base + 1u] = floatBitsToUint(tExit);
+      nodes[base + 2u] = floatBitsToUint(tau);
+      nodes[base + 3u] = floatBitsToUint(radiance.r);
+      nodes[base + 4u] = floatBitsToUint(radiance.g);
+      nodes[base + 5u] = floatBitsToUint(radiance.b);
+      nodes[base + 6u] = imageAtomicExchange(uHeads, ivec2(gl_FragCoord.xy), node);
+      oColor = vec4(0.0, 0.0, 0.0, 1.0);  // stored: composited by volume_resolve.comp.glsl
+    } else {
+      atomicAdd(fragOverflow, 1u);  // no room: alpha-blended into the colour image (fallback)
+    }
+  }
   oDistance = 1.0 - transmittance >= uMinOpacityForDistance
                   ? tEnter + clamp(od.y, 0.0, 1.0) * (tExit - tEnter)
                   : uNoDistance;

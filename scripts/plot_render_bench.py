@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""Draws the ground-truth chart of `cloudlut bench --suite ground-truth`: RMSE against the
+path-traced reference versus render time, one panel per scene, one series per method (ray
+marching at its step counts, fixed and adaptive; the LUT particle renderer), the reference's
+noise floor as a dashed line. Usage: plot_render_bench.py BENCH.csv OUT.png"""
+import csv
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+SCENES = ["one", "two", "three", "cluster", "cloudscape"]
+
+
+def number(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        return float("nan")
+
+
+def main() -> int:
+    if len(sys.argv) != 3:
+        print("usage: plot_render_bench.py BENCH.csv OUT.png", file=sys.stderr)
+        return 2
+    rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["suite"] == "ground-truth"]
+    measured = [r for r in rows if r["table"] and number(r["seconds"]) > 0 and number(r["error_mean"]) >= 0]
+    if not measured:
+        print("plot_render_bench.py: no ground-truth rows with time and error", file=sys.stderr)
+        return 1
+    scenes = [s for s in SCENES if any(r["table"] == s for r in measured)]
+    scenes += sorted({r["table"] for r in measured} - set(scenes))
+    fig, axes = plt.subplots(1, len(scenes), figsize=(4.2 * len(scenes), 4.2), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        series = defaultdict(list)
+        noise = None
+        for r in measured:
+            if r["table"] != scene:
+                continue
+            if r["method"] == "path-traced":
+                noise = number(r["error_mean"])
+                continue
+            series[r["method"]].append(r)
+        for method, pts in sorted(series.items()):
+            pts.sort(key=lambda r: number(r["seconds"]))
+            xs = [1e3 * number(r["seconds"]) for r in pts]
+            ys = [number(r["error_mean"]) for r in pts]
+            ax.plot(xs, ys, marker="o" if len(pts) > 1 else "s", label=method)
+            for r, x, y in zip(pts, xs, ys):
+                if r["steps"] not in ("", "0"):
+                    ax.annotate(r["steps"], (x, y), textcoords="offset points", xytext=(3, 3), fontsize=7)
+        if noise:
+            ax.axhline(noise, linestyle="--", color="grey", linewidth=1, label="reference noise (RMS s.e.)")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("render time, ms (llvmpipe)")
+        ax.set_ylabel("RMSE vs path-traced ground truth")
+        ax.set_title(scene)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(sys.argv[2], dpi=110)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

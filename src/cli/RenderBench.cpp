@@ -1,0 +1,159 @@
+// The render suite of `cloudlut bench` (see BenchSuites.h): Renderer II cloudscapes per quality
+// preset (seed Table 1) and blend mode, milliseconds per stage, and temporal stability over a
+// slow camera move. llvmpipe (OSMesa) on the CPU: absolute times are those of a software GPU;
+// ratios between rows are the figures to read.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "bake/OpticalDepthBaker.h"
+#include "cli/BenchSuites.h"
+#include "core/ReferenceParticle.h"
+#include "render/Cloudscape.h"
+#include "render/GlContext.h"
+#include "render/Renderer.h"
+
+namespace cloudlut::cli {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Synthetic scattering table on the documented axes (the timing does not depend on the values;
+// the baked scattering tables may not exist yet when the suite runs).
+Table4D syntheticScattering(const std::string& name, bool single) {
+  const std::array<int, 4> dims = {16, 24, 8, 8};
+  std::array<Axis, 4> axes = {Axis{"theta_s", "rad", 0.0, kPi, dims[0], false},
+                              Axis{"phi_v", "rad", 0.0, 2.0 * kPi, dims[1], true},
+                              Axis{"theta_v", "rad", 0.0, 0.5 * kPi, dims[2], false},
+                              Axis{"log2_density", "log2", -4.0, 3.0, dims[3], false}};
+  Table4D t(name, axes, {Channel{"radiance", "synthetic"}});
+  for (int i3 = 0; i3 < dims[3]; ++i3)
+    for (int i2 = 0; i2 < dims[2]; ++i2)
+      for (int i1 = 0; i1 < dims[1]; ++i1)
+        for (int i0 = 0; i0 < dims[0]; ++i0) {
+          const double ts = axes[0].value(i0), tv = axes[2].value(i2), s = axes[3].value(i3);
+          const double v = single ? 0.05 * std::exp2(0.25 * s) * (1.0 + 0.4 * std::cos(ts)) * (0.6 + 0.4 * std::cos(tv))
+                                  : 0.08 * (1.0 + 0.5 * std::tanh(0.5 * s)) * (1.0 + 0.5 * std::cos(ts));
+          t.at(t.index(i0, i1, i2, i3), 0) = static_cast<float>(v);
+        }
+  t.parameters() = {{"extinction_per_m", 0.07}, {"radius_m", 183.8}, {"synthetic", true}};
+  if (single) t.parameters()["first_phase"] = {{"kind", 2}, {"param", 0.9}};
+  return t;
+}
+
+io::LutSet benchLuts() {
+  io::LutSet set;
+  set.dir = "(bench: baked 32x16x32x16 noise optical depth, synthetic scattering)";
+  bake::OpticalDepthSettings s;
+  s.dims = {32, 16, 32, 16};
+  set.tables["optical_depth"] = io::LoadedTable{bake::bakeOpticalDepth(ReferenceParticle(DensityModel::Noise, 1), s),
+                                                io::SampleType::Float, true, {}};
+  set.tables["single_scattering"] = io::LoadedTable{syntheticScattering("single_scattering", true), io::SampleType::Float, true, {}};
+  set.tables["multiple_scattering"] = io::LoadedTable{syntheticScattering("multiple_scattering", false), io::SampleType::Float, true, {}};
+  return set;
+}
+
+// Mean, 95th percentile and max of the per-pixel |change| of the composited radiance
+// (radiance + T · sky, averaged over R, G, B) between two frames.
+ErrorStats frameChange(const render::Image& a, const render::Image& b, const glm::vec3& sky) {
+  std::vector<double> d(static_cast<std::size_t>(a.width) * a.height);
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    double sum = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double ca = a.rgba[4 * i + c] + (1.0 - a.rgba[4 * i + 3]) * sky[c];
+      const double cb = b.rgba[4 * i + c] + (1.0 - b.rgba[4 * i + 3]) * sky[c];
+      sum += std::abs(ca - cb);
+    }
+    d[i] = sum / 3.0;
+  }
+  return summarizeErrors(std::move(d));
+}
+
+}  // namespace
+
+void benchRender(BenchReport& report, const BenchOptions& options) {
+  const int width = options.quick ? 320 : 640, height = options.quick ? 180 : 360;
+  const int frames = options.quick ? 4 : 8;
+  const std::string res = std::to_string(width) + "x" + std::to_string(height);
+  const io::LutSet luts = benchLuts();
+  const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
+  render::Renderer renderer(*context, luts);
+  const render::CloudscapeScene scene = render::loadCloudscape(render::kDefaultCloudscape);
+  render::Scene empty;
+  empty.view = scene.view;
+  const render::View view = render::resolveView(empty, {});
+  const auto& qualities = render::qualityPresetNames();
+  int step = 0;
+  const int steps = static_cast<int>(qualities.size()) * 2;
+  for (const std::string& qname : qualities) {
+    const render::QualityPreset q = render::qualityPreset(qname);
+    for (render::BlendMode blend : {render::BlendMode::Alpha, render::BlendMode::Volume}) {
+      reportProgress(options.progress, "bench: render", static_cast<double>(step++) / steps);
+      render::RenderSettings s;
+      s.width = width;
+      s.height = height;
+      s.view = view;
+      s.blend = blend;
+      const std::string method = render::toString(blend);
+      const std::string variant = qname + " " + std::to_string(q.ringDim) + "^2x" + std::to_string(q.rings) + "x" +
+                                  std::to_string(q.layers);
+      renderer.renderCloudscape(scene.cloud, q, s);  // warm-up (buffers, shader caches)
+      render::RenderStats st;
+      const auto t0 = std::chrono::steady_clock::now();
+      renderer.renderCloudscape(scene.cloud, q, s, &st);
+      const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      char note[256];
+      std::snprintf(note, sizeof note, "%zu particles, %zu cells, %zu fragments (%zu overflow, %zu truncated px)",
+                    st.particles, st.validCells, st.fragments, st.fragmentOverflow, st.truncatedPixels);
+      const int particles = static_cast<int>(st.particles);
+      auto row = [&](const std::string& stage, double seconds, const std::string& r, const std::string& n) {
+        report.add(BenchRow{"render", method, stage, variant, r, "", particles, 0, seconds, -1, -1, -1, -1, n});
+      };
+      row("generation", st.generateSeconds, res, note);
+      row("occlusion", st.occlusionSeconds, res, "64x64 light tiles, xi 0.05, smoothing");
+      row("shading+blending", st.renderSeconds, res,
+          blend == render::BlendMode::Volume ? "draw + resolve (resolve " +
+                                                   std::to_string(static_cast<int>(1e3 * st.resolveSeconds)) + " ms)"
+                                             : "draw (GPU bitonic sort is in generation)");
+      row("total", total, res, "incl. read-back " + std::to_string(static_cast<int>(1e3 * st.readbackSeconds)) + " ms");
+      // Half-resolution particles + bilateral upscale (the seed's setting).
+      render::RenderSettings half = s;
+      half.downscale = 2;
+      render::RenderStats sh;
+      const auto t1 = std::chrono::steady_clock::now();
+      renderer.renderCloudscape(scene.cloud, q, half, &sh);
+      const double totalHalf = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+      row("shading+blending", sh.renderSeconds, res + "/2", "particles at half resolution");
+      row("upscale", sh.upscaleSeconds, res + "/2", "bilateral (depth-aware), CPU");
+      row("total", totalHalf, res + "/2", "");
+
+      // Temporal stability: a slow forward move with a slight yaw.
+      std::vector<double> means;
+      ErrorStats worst;
+      render::Image previous;
+      for (int f = 0; f < frames; ++f) {
+        render::RenderSettings m = s;
+        m.view.camera = render::cameraOnPath(view.camera, f, 15.0f, 0.05f);
+        render::Image image = renderer.renderCloudscape(scene.cloud, q, m);
+        if (f > 0) {
+          const ErrorStats e = frameChange(previous, image, view.lighting.skyColor);
+          means.push_back(e.mean);
+          worst.p95 = std::max(worst.p95, e.p95);
+          worst.max = std::max(worst.max, e.max);
+        }
+        previous = std::move(image);
+      }
+      double mean = 0;
+      for (double v : means) mean += v / static_cast<double>(means.size());
+      report.add(BenchRow{"render", method, "stability", variant, res, "", particles, 0, 0.0, mean, worst.p95, worst.max, -1,
+                          "mean |frame-to-frame change| of composited radiance, " + std::to_string(frames) +
+                              " frames, 15 m + 0.05 deg yaw per frame"});
+    }
+  }
+  reportProgress(options.progress, "bench: render", 1.0);
+}
+
+}  // namespace cloudlut::cli

@@ -1,0 +1,113 @@
+#pragma once
+// Monte Carlo ground truth for a particle scene (`cloudlut reference scene`): a path tracer of
+// the exact medium the particle list describes, independent of the tables and of every
+// renderer. It shares with them only the density model (core/ReferenceParticle), the phase
+// functions (core/Glsl.h) and the conventions below.
+//
+// The medium. Particle i maps its unit sphere p to the world by x = c_i + M_i·p. Its density
+// is ρ_i·ρ̂(p) with ρ̂ the reference particle's normalised density (the same model, seed and
+// grid as the optical-depth table). Densities of overlapping particles add. As in the renderer
+// (docs/SCENE_FORMAT.md), lengths are measured in each particle's own unit-sphere units, so a
+// particle's world size does not change its thickness: a ray of unit world direction ω meets
+// the extinction
+//     σ_i(x, ω) = β·R · ρ_i · ρ̂(M_i⁻¹(x − c_i)) · |M_i⁻¹ ω|        (world units⁻¹)
+// in particle i (β·R = the unit optical radius). For a sphere of any radius the medium is the
+// ordinary isotropic one (σ = β·R·ρ·ρ̂ / r); a stretched particle is the reference particle
+// seen through its linear map (optical lengths along every line are those of the unit-sphere
+// problem), with phase functions evaluated at world-space scattering angles, as the renderer
+// does. No absorption (single-scattering albedo 1).
+//
+// Light: a directional sun (unit irradiance, times the sun colour) along −l, and optionally a
+// uniform sky (constant radiance from every direction, times the sky colour).
+//
+// The estimator: backward path tracing from the camera. Free flights by delta tracking against
+// a piecewise-constant majorant (the sum of the per-particle majorants β·R·ρ_i·|M_i⁻¹ω| of the
+// particles whose ellipsoids the ray crosses; ρ̂ ≤ 1), so every sample is unbiased. Every
+// scattering vertex connects to the sun (next-event estimation with the first phase function
+// P1 and the sun transmittance by ratio tracking; exact for homogeneous particles); the path
+// continues along a direction sampled exactly from the later phase function PM, and a
+// continuation that leaves the medium collects the sky. With albedo 1 and exact phase sampling
+// the path weight stays 1; paths end when they leave the medium (or at maxOrder). Transmittance
+// of the camera ray (alpha = 1 − T) by ratio tracking along it.
+//
+// Determinism: pixel i draws from McRng(seed, i, 0) and is computed by one thread, so the
+// image does not depend on the number of threads.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/Progress.h"
+#include "core/ReferenceParticle.h"
+#include "reference/SphereMonteCarlo.h"
+
+namespace cloudlut::reference {
+
+struct SceneParticle {
+  glm::dvec3 center{0.0};
+  glm::dmat3 toParticle{1.0};  // M⁻¹: world offset → unit-sphere coordinates
+  double density = 1.0;       // ρ
+};
+
+struct SceneMedium {
+  std::vector<SceneParticle> particles;
+  const ReferenceParticle* model = nullptr;  // ρ̂; must outlive the medium's use
+  double unitOpticalRadius = 0.07 * 183.8;   // β·R
+};
+
+struct ScenePtSettings {
+  McPhase first{2, 0.9f};    // sunlight's first scattering (NEE)
+  McPhase later{2, 0.7f};    // every later scattering (path continuation)
+  int samplesPerPixel = 64;
+  std::uint64_t seed = 1;
+  int maxOrder = 0;          // > 0: stop after this many scattering events; 0 = no limit
+  bool jitter = false;       // sample the pixel's area (true) or its centre (false)
+};
+
+struct SceneLight {
+  glm::dvec3 sunDirection{0.0, 1.0, 0.0};  // unit, toward the sun
+};
+
+// Per-ray estimates (means of the samples and their standard errors): radiance per unit sun
+// irradiance of order 1 and of orders ≥ 2, radiance per unit sky radiance, and the camera
+// ray's transmittance.
+struct RayEstimate {
+  double single = 0, singleSe = 0;
+  double multiple = 0, multipleSe = 0;
+  double sky = 0, skySe = 0;
+  double transmittance = 1, transmittanceSe = 0;
+  double sunSe = 0;      // standard error of single + multiple
+  double sunSkyCov = 0;  // covariance of the means of (single + multiple) and sky
+  double vertices = 0;   // mean scattering vertices per path
+};
+
+// One camera ray (origin outside or inside the medium, unit direction), `samples` paths from
+// McRng(seed, stream, 0).
+RayEstimate estimateRay(const SceneMedium& medium, const SceneLight& light, const ScenePtSettings& settings,
+                        const glm::dvec3& origin, const glm::dvec3& direction, long long samples,
+                        std::uint64_t stream);
+
+// The image: pixel (x, y) from the top-left; `cameraRay(px, py, origin, direction)` gives the
+// ray through the image point (px, py) in pixel units (centre of pixel (x, y) = (x + .5, y + .5)).
+struct ScenePtImage {
+  int width = 0, height = 0;
+  // Per pixel, row-major from the top: the estimates above.
+  std::vector<RayEstimate> pixels;
+  double seconds = 0;
+  double meanVertices = 0;  // scattering vertices per path
+};
+
+using CameraRayFn = std::function<void(double px, double py, glm::dvec3& origin, glm::dvec3& direction)>;
+
+// Parallel over 16×16 tiles (oneTBB); progress reported as the fraction of tiles done.
+ScenePtImage renderScene(const SceneMedium& medium, const SceneLight& light, const ScenePtSettings& settings,
+                         int width, int height, const CameraRayFn& cameraRay, const ProgressFn& progress = {});
+
+// Exact optical depth along the segment [t0, t1] of a ray (world units) when every particle is
+// homogeneous (model Sphere); used by the tests and the analytic shortcut.
+double homogeneousOpticalDepth(const SceneMedium& medium, const glm::dvec3& origin, const glm::dvec3& direction,
+                               double t0, double t1);
+
+}  // namespace cloudlut::reference

@@ -1,0 +1,95 @@
+// cloudscape_generate.comp.glsl — GPU particle generation (seed §5.2). Preceded by
+// cloudscape_grid.glsl and particle_common.glsl, and by "#define STAGE n":
+//   STAGE 0: one thread per grid cell (ring-major); non-empty cells in the frustum are appended
+//            (atomic counter) to the cell list;
+//   STAGE 1: one thread writes the indirect dispatch arguments for stage 2 from the counter;
+//   STAGE 2: one thread per valid cell (glDispatchComputeIndirect): its particles, culled
+//            against the frustum and the far distance, appended to the particle buffer with their
+//            back-to-front sort key.
+
+layout(local_size_x = 64) in;
+
+uniform vec4 uG0;
+uniform vec4 uG1;
+uniform vec4 uG2;
+uniform vec4 uG3;
+uniform vec3 uEye;
+uniform vec4 uPlanes[5];
+
+layout(std430, binding = 6) buffer Generation {
+  uint cellCount;
+  uint particleCount;
+  uint particleCapacity;
+  uint particleOverflow;
+  uvec4 dispatchArgs;  // x, y, z groups for stage 2
+  ivec4 cells[];       // (ix, iz, ring, layers)
+};
+
+layout(std430, binding = 1) buffer SortKeys {
+  uvec2 sortKeys[];  // (floatBitsToUint(distance), particle index)
+};
+
+void main() {
+  uint id = gl_GlobalInvocationID.x;
+#if STAGE == 0
+  int dim = int(uG0.y);
+  uint perRing = uint(dim * dim);
+  if (id >= perRing * uint(uG0.z)) return;
+  int ring = int(id / perRing);
+  int rem = int(id % perRing);
+  vec2 camXZ = vec2(uEye.x, uEye.z);
+  ivec2 origin = cgRingOrigin(camXZ, ring, uG0);
+  int ix = origin.x + rem % dim;
+  int iz = origin.y + rem / dim;
+  vec2 centre = cgCellCentre(ring, ix, iz, uG0);
+  vec2 delta = abs(centre - camXZ);
+  float w = cgRingWeight(ring, max(delta.x, delta.y), uG0, uG3);
+  if (!(w > 0.0f)) return;
+  float amount = cgCoverage(centre, uG1, uG2, uG3);
+  int layers = cgLayerCount(amount, uG0);
+  if (layers < 1) return;
+  vec4 b = cgCellBound(ring, ix, iz, uG0, uG1, uG2, uG3);
+  if (!cgVisible(b.xyz, b.w, uEye, uG3.y + b.w, uPlanes[0], uPlanes[1], uPlanes[2], uPlanes[3], uPlanes[4])) return;
+  uint slot = atomicAdd(cellCount, 1u);
+  cells[slot] = ivec4(ix, iz, ring, layers);
+#elif STAGE == 1
+  if (id == 0u) dispatchArgs = uvec4((cellCount + 63u) / 64u, 1u, 1u, 0u);
+#else
+  if (id >= cellCount) return;
+  ivec4 cell = cells[id];
+  int ring = cell.z;
+  vec2 camXZ = vec2(uEye.x, uEye.z);
+  vec2 centre = cgCellCentre(ring, cell.x, cell.y, uG0);
+  vec2 delta = abs(centre - camXZ);
+  float w = cgRingWeight(ring, max(delta.x, delta.y), uG0, uG3);
+  float amount = cgCoverage(centre, uG1, uG2, uG3);
+  for (int k = 0; k < cell.w; ++k) {
+    CgParticle p = cgParticle(ring, cell.x, cell.y, k, amount, w, uG0, uG1, uG2, uG3);
+    float reach = max(p.radii.x, p.radii.y);
+    if (!cgVisible(p.centre, reach, uEye, uG3.y, uPlanes[0], uPlanes[1], uPlanes[2], uPlanes[3], uPlanes[4]))
+      continue;
+    uint slot = atomicAdd(particleCount, 1u);
+    if (slot >= particleCapacity) {
+      atomicAdd(particleOverflow, 1u);
+      continue;
+    }
+    float cy = cos(p.yaw);
+    float sy = sin(p.yaw);
+    // R_y(yaw) columns: (cos, 0, -sin), (0, 1, 0), (sin, 0, cos).
+    vec3 c0 = vec3(cy, 0.0f, -sy);
+    vec3 c1 = vec3(0.0f, 1.0f, 0.0f);
+    vec3 c2 = vec3(sy, 0.0f, cy);
+    GpuParticle g;
+    g.centerDensity = vec4(p.centre, p.density);
+    g.toWorld[0] = vec4(c0 * p.radii.x, 1.0f);
+    g.toWorld[1] = vec4(c1 * p.radii.y, p.weight);
+    g.toWorld[2] = vec4(c2 * p.radii.z, 0.0f);
+    // Inverse: diag(1/r) · R^T; column k of it is (R row k) / r.
+    g.toParticle[0] = vec4(c0.x / p.radii.x, c1.x / p.radii.y, c2.x / p.radii.z, float(ring * 16 + k));
+    g.toParticle[1] = vec4(c0.y / p.radii.x, c1.y / p.radii.y, c2.y / p.radii.z, float(cell.x));
+    g.toParticle[2] = vec4(c0.z / p.radii.x, c1.z / p.radii.y, c2.z / p.radii.z, float(cell.y));
+    particles[slot] = g;
+    sortKeys[slot] = uvec2(floatBitsToUint(length(p.centre - uEye)), slot);
+  }
+#endif
+}
