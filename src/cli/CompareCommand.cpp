@@ -7,9 +7,7 @@
 #include <string>
 #include <vector>
 
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_STATIC
-#include <stb/stb_image_write.h>
+#include "io/PngImage.h"
 
 #include "cli/Command.h"
 #include "cli/Options.h"
@@ -20,10 +18,6 @@
 
 namespace cloudlut::cli {
 namespace {
-
-void appendBytes(void* context, void* data, int size) {
-  static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
-}
 
 reference::RgbaView viewOf(const io::ExrImage& img, const std::string& path) {
   for (const char* c : {"R", "G", "B"})
@@ -44,7 +38,7 @@ reference::RgbaView viewOf(const io::ExrImage& img, const std::string& path) {
 void writeDiffPng(const reference::RgbaView& a, const reference::RgbaView& b, double threshold, double scale,
                   const std::string& path) {
   const std::size_t n = static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height);
-  std::vector<unsigned char> rgb(3 * n);
+  std::vector<std::uint8_t> rgb(3 * n);
   for (std::size_t i = 0; i < n; ++i) {
     const bool cloud = (!a.a && !b.a) || (a.a && a.a[i] > threshold) || (b.a && b.a[i] > threshold);
     unsigned char* o = &rgb[3 * i];
@@ -69,10 +63,7 @@ void writeDiffPng(const reference::RgbaView& a, const reference::RgbaView& b, do
       o[2] = byte(m);
     }
   }
-  std::string bytes;
-  if (!stbi_write_png_to_func(appendBytes, &bytes, a.width, a.height, 3, rgb.data(), a.width * 3))
-    throw UsageError("cannot encode '" + path + "' as PNG");
-  io::writeFileAtomically(path, bytes);
+  io::writePng(path, a.width, a.height, rgb);
 }
 
 int runCompare(int argc, char** argv) {
