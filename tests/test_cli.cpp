@@ -15,7 +15,7 @@ using namespace cloudlut::test;
 namespace fs = std::filesystem;
 
 namespace {
-const std::string kSmall = "--res-od 16,8,16,8 --quiet";
+const std::string kSmall = "--tables optical-depth --res-od 16,8,16,8 --quiet";
 
 std::size_t lineCount(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 }  // namespace
@@ -125,7 +125,7 @@ TEST_CASE("check passes on identical tables and catches one perturbed value", "[
 TEST_CASE("query evaluates the optical depth of the homogeneous sphere exactly", "[cli]") {
   TempDir tmp;
   const std::string out = (tmp / "luts").string();
-  REQUIRE(runCli("bake --res-od 16,8,16,8 --quiet --density-model sphere --precision float --out '" + out + "'").exitCode == 0);
+  REQUIRE(runCli("bake --tables optical-depth --res-od 16,8,16,8 --quiet --density-model sphere --precision float --out '" + out + "'").exitCode == 0);
   std::ofstream(tmp / "in.csv") << "sx,sy,sz,vx,vy,vz,lx,ly,lz,density\n"
                                    "0,0,1,0,0,-1,0,0,1,0.5\n"           // through the centre: L = 2
                                    "1,0,0,-0.6,0.8,0,0,0,1,2\n";       // L = 2·0.6
@@ -191,4 +191,53 @@ TEST_CASE("info, check and query reject bad files with a message naming the file
   CHECK(runCli("info '" + (tmp / "missing").string() + "'").exitCode == 1);
   std::ofstream(tmp / "garbage.exr") << "v/1 not really";
   CHECK(runCli("info '" + (tmp / "garbage.exr").string() + "'").exitCode == 1);
+}
+
+TEST_CASE("scattering options: bad values are usage errors and write nothing", "[cli]") {
+  TempDir tmp;
+  const std::string out = (tmp / "luts").string();
+  const char* cases[] = {
+      "bake --tables single --g1 1",
+      "bake --tables multiple --gm -1.5",
+      "bake --tables single --phase rayleigh",
+      "bake --tables single --phase jd --droplet-um 2",
+      "bake --tables multiple --orders 0",
+      "bake --tables multiple --orders many",
+      "bake --tables single --densities 3:-4",
+      "bake --tables single --densities -4,-3,-1",
+      "bake --tables single --densities 2",
+      "bake --tables single --res-sc 32,64,16",
+      "bake --tables single --res-sc 4096,4096,4096,8",
+      "bake --tables multiple --method magic",
+      "bake --tables single --extinction -1",
+  };
+  for (const char* c : cases) {
+    INFO(c);
+    const CliResult r = runCli(std::string(c) + " --quiet --out '" + out + "'");
+    CHECK(r.exitCode == 2);
+    CHECK(lineCount(r.err) == 1);
+    CHECK_FALSE(fs::exists(out));
+  }
+}
+
+TEST_CASE("a small scattering bake is queried and its energy integrated", "[cli]") {
+  TempDir tmp;
+  const std::string out = (tmp / "luts").string();
+  const CliResult bake = runCli("bake --tables single,multiple --res-sc 8,16,6,3 --densities -2:0 --orders 4 --quiet "
+                                "--precision float --format bin --out '" + out + "'");
+  REQUIRE(bake.exitCode == 0);
+  const CliResult energy = runCli("info '" + out + "' --energy --json");
+  REQUIRE(energy.exitCode == 0);
+  const auto j = nlohmann::json::parse(energy.out);
+  REQUIRE(j["slices"].size() == 3);
+  for (const auto& s : j["slices"]) {
+    CHECK(s["single"].get<double>() > 0.0);
+    CHECK(s["multiple"].get<double>() > 0.0);
+    CHECK(s["total"].get<double>() <= 1.02);  // a non-absorbing particle returns at most what it receives
+  }
+  std::ofstream(tmp / "in.csv") << "sx,sy,sz,vx,vy,vz,lx,ly,lz,density\n0,0,1,0,0,-1,0,0,1,0.5\n";
+  const CliResult q = runCli("query '" + out + "' --csv '" + (tmp / "in.csv").string() + "'");
+  REQUIRE(q.exitCode == 0);
+  // the optical-depth columns are empty (no table), the scattering ones are filled
+  CHECK(q.out.find("0.5,,,") != std::string::npos);
 }

@@ -61,36 +61,42 @@ struct RadialAxis {
     i = std::min(static_cast<int>(s), n - 2);
     f = static_cast<float>(std::clamp(s - i, 0.0, 1.0));
   }
-  // Four-node weights (nodes start … start+3), exact for quadratics in q: Catmull–Rom inside,
-  // three-point Lagrange in the first and last intervals. Needs n >= 4.
-  void cubic(double r, int& start, float w[4]) const {
-    int i;
-    float f;
-    locate(r, i, f);
-    const double x = f;
-    if (i == 0) {
-      start = 0;
-      w[0] = static_cast<float>((x - 1) * (x - 2) / 2);
-      w[1] = static_cast<float>(-x * (x - 2));
-      w[2] = static_cast<float>(x * (x - 1) / 2);
-      w[3] = 0.0f;
-    } else if (i == n - 2) {
-      start = n - 4;
-      const double y = x + 1.0;  // relative to node n − 3
-      w[0] = 0.0f;
-      w[1] = static_cast<float>((y - 1) * (y - 2) / 2);
-      w[2] = static_cast<float>(-y * (y - 2));
-      w[3] = static_cast<float>(y * (y - 1) / 2);
-    } else {
-      start = i - 1;
-      const double x2 = x * x, x3 = x2 * x;
-      w[0] = static_cast<float>((-x3 + 2 * x2 - x) / 2);
-      w[1] = static_cast<float>((3 * x3 - 5 * x2 + 2) / 2);
-      w[2] = static_cast<float>((-3 * x3 + 4 * x2 + x) / 2);
-      w[3] = static_cast<float>((x3 - x2) / 2);
-    }
-  }
+  // Four-node weights in q (see cubicWeights).
+  void cubic(double r, int& start, float w[4]) const;
 };
+
+// Four-node interpolation weights at the continuous node coordinate x ∈ [0, n−1] of a uniform
+// axis of n ≥ 4 nodes: nodes start … start+3, exact for quadratics — Catmull–Rom inside,
+// three-point Lagrange in the first and last intervals. Linear interpolation of a curved field
+// in an optically thick medium acts like extra diffusion (it widens every step of the random
+// walk to the grid spacing); quadratic exactness removes that leading error.
+void cubicWeights(double x, int n, int& start, float w[4]) {
+  const int i = std::clamp(static_cast<int>(x), 0, n - 2);
+  const double f = std::clamp(x - i, 0.0, 1.0);
+  if (i == 0) {
+    start = 0;
+    w[0] = static_cast<float>((f - 1) * (f - 2) / 2);
+    w[1] = static_cast<float>(-f * (f - 2));
+    w[2] = static_cast<float>(f * (f - 1) / 2);
+    w[3] = 0.0f;
+  } else if (i == n - 2) {
+    start = n - 4;
+    const double y = f + 1.0;  // relative to node n − 3
+    w[0] = 0.0f;
+    w[1] = static_cast<float>((y - 1) * (y - 2) / 2);
+    w[2] = static_cast<float>(-y * (y - 2));
+    w[3] = static_cast<float>(y * (y - 1) / 2);
+  } else {
+    start = i - 1;
+    const double f2 = f * f, f3 = f2 * f;
+    w[0] = static_cast<float>((-f3 + 2 * f2 - f) / 2);
+    w[1] = static_cast<float>((3 * f3 - 5 * f2 + 2) / 2);
+    w[2] = static_cast<float>((-3 * f3 + 4 * f2 + f) / 2);
+    w[3] = static_cast<float>((f3 - f2) / 2);
+  }
+}
+
+void RadialAxis::cubic(double r, int& start, float w[4]) const { cubicWeights(q(r) * (n - 1), n, start, w); }
 
 // Quadrature along a ray in u = 1 − e^{−σs}: panels [0, U/16], [U/16, U/4], [U/4, U] with
 // the given numbers of Gauss points. Returns (s, weight) pairs: ∫_0^d σe^{−σs} f ds ≈ Σ w f(s).
@@ -140,9 +146,10 @@ void axpy(float alpha, const std::vector<float>& x, std::vector<float>& y) {
 }
 
 struct StencilEntry {
-  std::uint32_t base;  // node (radial start, zenith, direction zenith, azimuth)
+  std::uint32_t base;  // node (radial start, zenith start, direction zenith, azimuth)
   float wr[4];         // radial weights × quadrature weight
-  float ft, fb;        // zenith and azimuth fractions
+  float wt[4];         // position-zenith weights
+  float fb;            // azimuth fraction
 };
 
 }  // namespace
@@ -260,9 +267,8 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
         float wr[4];
         radial.cubic(r, ir, wr);
         const double th = std::atan2(rho, y.z);
-        const double st = th / kPi * (nt - 1);
-        it = std::min(static_cast<int>(st), nt - 2);
-        const float ft = static_cast<float>(std::clamp(st - it, 0.0, 1.0));
+        float wt[4];
+        cubicWeights(th / kPi * (nt - 1), nt, it, wt);
         // Relative azimuth of the direction about l, folded to [0, π].
         double phi = 0.0;
         if (rho > 1e-12 && wh > 1e-12) {
@@ -272,8 +278,10 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
         double fbd;
         sh.coarse.locatePhi(phi, ib, fbd);
         e[k].base = static_cast<std::uint32_t>(ir * strideR + it * strideT + ia * nb + ib);
-        for (int c = 0; c < 4; ++c) e[k].wr[c] = static_cast<float>(ww[k]) * wr[c];
-        e[k].ft = ft;
+        for (int c = 0; c < 4; ++c) {
+          e[k].wr[c] = static_cast<float>(ww[k]) * wr[c];
+          e[k].wt[c] = wt[c];
+        }
         e[k].fb = static_cast<float>(fbd);
       }
     }
@@ -290,11 +298,12 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
         float acc = 0.0f;
         for (int k = 0; k < K; ++k) {
           const float* p = &in[e[k].base];
-          const float ft = e[k].ft, fb = e[k].fb;
+          const float fb = e[k].fb;
           for (int c = 0; c < 4; ++c, p += strideR) {
-            const float a0 = p[0] + fb * (p[1] - p[0]);
-            const float a1 = p[strideT] + fb * (p[strideT + 1] - p[strideT]);
-            acc += e[k].wr[c] * (a0 + ft * (a1 - a0));
+            const float* pt = p;
+            float a = 0.0f;
+            for (int t = 0; t < 4; ++t, pt += strideT) a += e[k].wt[t] * (pt[0] + fb * (pt[1] - pt[0]));
+            acc += e[k].wr[c] * a;
           }
         }
         out[cell] = acc;
@@ -339,11 +348,8 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
         for (int k = 0; k < K; ++k) {
           const std::size_t base = e[k].base;
           const int ir0 = static_cast<int>(base / strideR), it0 = static_cast<int>((base % strideR) / strideT);
-          for (int c = 0; c < 4; ++c) {
-            const double wr = qd * e[k].wr[c];
-            row[(ir0 + c) * nt + it0] += wr * (1.0 - e[k].ft);
-            row[(ir0 + c) * nt + it0 + 1] += wr * e[k].ft;
-          }
+          for (int c = 0; c < 4; ++c)
+            for (int t = 0; t < 4; ++t) row[(ir0 + c) * nt + it0 + t] += qd * e[k].wr[c] * e[k].wt[t];
         }
       }
     });
@@ -512,9 +518,8 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
         int ir, it, ib;
         float wr[4];
         radial.cubic(r, ir, wr);
-        const double st = std::atan2(rho, y.z) / kPi * (nt - 1);
-        it = std::min(static_cast<int>(st), nt - 2);
-        const float ft = static_cast<float>(std::clamp(st - it, 0.0, 1.0));
+        float wt[4];
+        cubicWeights(std::atan2(rho, y.z) / kPi * (nt - 1), nt, it, wt);
         double phi = 0.0;
         if (rho > 1e-12 && wh > 1e-12)
           phi = std::abs(std::atan2(w.y * y.x - w.x * y.y, w.x * y.x + w.y * y.y));
@@ -525,9 +530,10 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
         for (int c = 0; c < 2; ++c) {
           const float* p = &field[ir * strideR + it * strideT + (ia + c) * nb + ib];
           for (int j = 0; j < 4; ++j, p += strideR) {
-            const float a0 = p[0] + fb * (p[1] - p[0]);
-            const float a1 = p[strideT] + fb * (p[strideT + 1] - p[strideT]);
-            corner[c] += wr[j] * (a0 + ft * (a1 - a0));
+            const float* pt = p;
+            float a = 0.0f;
+            for (int t = 0; t < 4; ++t, pt += strideT) a += wt[t] * (pt[0] + fb * (pt[1] - pt[0]));
+            corner[c] += wr[j] * a;
           }
         }
         value += ww[k] * (corner[0] + fa * (corner[1] - corner[0]));

@@ -42,8 +42,8 @@ struct FastResolution {
   int zenith = 32;        // position-zenith nodes over [0, π]
   int dirTheta = 24;      // direction-zenith nodes over [0, π]
   int dirPhi = 13;        // direction-azimuth nodes over [0, π]
-  int fineTheta = 48;     // once-scattered light: direction-zenith nodes, graded toward −l
-  int finePhi = 25;
+  int fineTheta = 32;     // once-scattered light: direction-zenith nodes, graded toward −l
+  int finePhi = 17;
   int transportPoints = 12;  // Gauss points per ray in the transport operator
   int gatherPoints = 24;     // ... in the final gather to the table nodes
   double grading = 32.0;     // depth grading a: q = α δ + (1 − α) ln(1 + aσδ) / ln(1 + aσ), δ = 1 − r

@@ -2,6 +2,7 @@
 // and format). Everything is validated before anything is computed or written; files are
 // written under temporary names and renamed, the manifest last.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <unistd.h>
 
 #include "bake/OpticalDepthBaker.h"
+#include "bake/ScatteringBaker.h"
 #include "cli/Command.h"
 #include "cli/Options.h"
 #include "cli/TtyProgress.h"
@@ -30,6 +32,7 @@ struct BakePlan {
   fs::path out;
   std::set<std::string> tables;  // "optical-depth", "single", "multiple"
   bake::OpticalDepthSettings od;
+  bake::ScatteringSettings sc;
   DensityModel model = DensityModel::Noise;
   std::uint64_t seed = 1;
   bool writeBin = true, writeExr = true;
@@ -45,11 +48,11 @@ std::set<std::string> parseTables(const std::string& text) {
     const auto pos = text.find(',', start);
     const std::string t = text.substr(start, pos == std::string::npos ? std::string::npos : pos - start);
     if (t == "all") {
-      tables.insert({"optical-depth"});
-    } else if (t == "optical-depth") {
+      tables.insert({"optical-depth", "single", "multiple"});
+    } else if (t == "optical-depth" || t == "single" || t == "multiple") {
       tables.insert(t);
     } else {
-      throw UsageError("--tables: unknown table '" + t + "' (optical-depth, all)");
+      throw UsageError("--tables: unknown table '" + t + "' (optical-depth, single, multiple, all)");
     }
     if (pos == std::string::npos) break;
     start = pos + 1;
@@ -84,12 +87,71 @@ void writeTable(const BakePlan& plan, const Table4D& table, io::SampleType type,
   entries[table.name()] = entry;
 }
 
+// Validates and fills the scattering settings; every bad value is a UsageError.
+void configureScattering(BakePlan& plan, const cxxopts::ParseResult& args) {
+  bake::ScatteringSettings& sc = plan.sc;
+  sc.dims = parseDims(args["res-sc"].as<std::string>(), "res-sc");
+  const std::vector<int> s = parseIntList(args["densities"].as<std::string>(), "densities");
+  if (s.size() < 2) throw UsageError("--densities: at least two density slices are needed");
+  for (std::size_t i = 2; i < s.size(); ++i)
+    if (s[i] - s[i - 1] != s[1] - s[0] || s[1] <= s[0])
+      throw UsageError("--densities: the slices must be increasing and evenly spaced in log2 rho");
+  if (s[1] <= s[0]) throw UsageError("--densities: the slices must be increasing");
+  if (s.front() < -20 || s.back() > 20) throw UsageError("--densities: log2 rho must lie in [-20, 20]");
+  sc.sMin = s.front();
+  sc.sMax = s.back();
+  sc.dims[3] = static_cast<int>(s.size());
+  sc.extinction = plan.od.extinction;
+  sc.radius = plan.od.radius;
+
+  const std::string phase = args["phase"].as<std::string>();
+  const double g1 = args["g1"].as<double>(), gm = args["gm"].as<double>();
+  if (phase == "cs" || phase == "hg") {
+    if (!(std::fabs(g1) < 1.0) || !(std::fabs(gm) < 1.0)) throw UsageError("--g1 and --gm must lie strictly between -1 and 1");
+    const int kind = phase == "cs" ? 2 : 1;
+    sc.firstPhase = {kind, static_cast<float>(g1)};
+    sc.laterPhase = {kind, static_cast<float>(gm)};
+  } else if (phase == "jd") {
+    const double d = args["droplet-um"].as<double>();
+    if (!(d >= 5.0 && d <= 50.0)) throw UsageError("--droplet-um must lie in [5, 50] (the range of the Jendersie-d'Eon fit)");
+    sc.firstPhase = sc.laterPhase = {3, static_cast<float>(d)};
+  } else if (phase == "iso") {
+    sc.firstPhase = sc.laterPhase = {0, 0.0f};
+  } else {
+    throw UsageError("--phase: expected cs, hg, jd or iso, got '" + phase + "'");
+  }
+
+  const std::string orders = args["orders"].as<std::string>();
+  if (orders == "converged") {
+    sc.orders = 0;
+  } else {
+    const std::vector<int> n = parseIntList(orders, "orders");
+    if (n.size() != 1 || n[0] < 2 || n[0] > 10000)
+      throw UsageError("--orders: expected a number of orders in [2, 10000] or 'converged', got '" + orders + "'");
+    sc.orders = n[0];
+  }
+  const std::string method = args["method"].as<std::string>();
+  if (method == "fast") sc.method = bake::ScatteringMethod::Fast;
+  else if (method == "paper") sc.method = bake::ScatteringMethod::Paper;
+  else throw UsageError("--method: expected fast or paper, got '" + method + "'");
+  sc.single = plan.tables.count("single") > 0;
+  sc.multiple = plan.tables.count("multiple") > 0;
+}
+
 int runBake(int argc, char** argv) {
   cxxopts::Options options("cloudlut bake", "Compute look-up tables into a LUT directory.");
   options.add_options()
     ("out", "output directory", cxxopts::value<std::string>()->default_value("out/luts"))
     ("tables", "tables to bake: optical-depth, all (comma-separated)", cxxopts::value<std::string>()->default_value("all"))
     ("res-od", "optical-depth table dimensions phi_s,theta_s,phi_v,theta_v", cxxopts::value<std::string>()->default_value("64,32,64,32"))
+    ("res-sc", "scattering table dimensions theta_s,phi_v,theta_v,density", cxxopts::value<std::string>()->default_value("32,64,16,8"))
+    ("densities", "density slices as log2 rho: a range a:b or an evenly spaced list a,b,c (sets the 4th dimension)", cxxopts::value<std::string>()->default_value("-4:3"))
+    ("phase", "phase function: cs (Cornette-Shanks), hg (Henyey-Greenstein), jd (Jendersie-d'Eon), iso", cxxopts::value<std::string>()->default_value("cs"))
+    ("g1", "asymmetry g of the first scattering of sunlight (cs, hg)", cxxopts::value<double>()->default_value("0.9"))
+    ("gm", "asymmetry g of every later scattering (cs, hg)", cxxopts::value<double>()->default_value("0.7"))
+    ("droplet-um", "droplet diameter in micrometres for jd (one phase for every order)", cxxopts::value<double>()->default_value("10"))
+    ("orders", "highest scattering order in the multiple table, or 'converged' for all of them", cxxopts::value<std::string>()->default_value("18"))
+    ("method", "scattering method: fast (ours) or paper (the seed's algorithm, slow)", cxxopts::value<std::string>()->default_value("fast"))
     ("density-model", "reference particle: noise, threshold, pyroclastic, radial, sphere", cxxopts::value<std::string>()->default_value("noise"))
     ("seed", "noise seed", cxxopts::value<std::uint64_t>()->default_value("1"))
     ("steps", "density samples per particle diameter along each chord (0 = the model's measured default)", cxxopts::value<int>()->default_value("0"))
@@ -125,8 +187,11 @@ int runBake(int argc, char** argv) {
     throw UsageError("--precision u8 cannot be stored in EXR; use --format bin or both");
   plan.threads = args["threads"].as<int>();
   plan.quiet = args.count("quiet") > 0;
+  const bool scattering = plan.tables.count("single") || plan.tables.count("multiple");
+  if (scattering) configureScattering(plan, args);
 
   if (plan.tables.count("optical-depth")) checkTableFitsInMemory(plan.od.dims, 2);
+  if (scattering) checkTableFitsInMemory(plan.sc.dims, 1, 2);
   const auto threadLimit = limitThreads(plan.threads);
   prepareOutputDirectory(plan.out);
 
@@ -141,6 +206,18 @@ int runBake(int argc, char** argv) {
     finishTtyProgress();
     writeTable(plan, table, plan.precision, entries);
   }
+  nlohmann::json scatteringReport;
+  if (scattering) {
+    const auto t0 = std::chrono::steady_clock::now();
+    bake::ScatteringResult result = bake::bakeScattering(plan.sc, progress);
+    timings["scattering_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    finishTtyProgress();
+    // Radiance is not confined to [0, 1]: 8-bit storage is for the optical-depth table only.
+    const io::SampleType type = plan.precision == io::SampleType::U8 ? io::SampleType::Half : plan.precision;
+    if (result.single) writeTable(plan, *result.single, type, entries);
+    if (result.multiple) writeTable(plan, *result.multiple, type, entries);
+    scatteringReport = result.report;
+  }
 
   nlohmann::json manifest;
   manifest["format"] = "cloudlut-lut-set";
@@ -148,6 +225,11 @@ int runBake(int argc, char** argv) {
   manifest["generator"] = std::string("cloudlut ") + CLOUDLUT_VERSION;
   manifest["parameters"] = {{"extinction_per_m", plan.od.extinction}, {"radius_m", plan.od.radius},
                             {"density_model", toString(plan.model)}, {"seed", plan.seed}};
+  if (scattering) {
+    manifest["parameters"]["orders"] = plan.sc.orders > 0 ? nlohmann::json(plan.sc.orders) : nlohmann::json("converged");
+    manifest["parameters"]["method"] = bake::toString(plan.sc.method);
+    manifest["scattering_report"] = scatteringReport;
+  }
   manifest["bake_seconds"] = timings;
   manifest["tables"] = entries;
   io::writeManifest(plan.out, manifest);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "bake/EnergyBalance.h"
 #include "cli/Command.h"
 #include "cli/Options.h"
 #include "core/Errors.h"
@@ -68,10 +69,38 @@ void printTable(const nlohmann::json& d) {
   if (d.contains("parameters")) std::printf("  params    %s\n", d["parameters"].dump().c_str());
 }
 
+// `info DIR --energy`: the energy balance of the scattering tables (bake/EnergyBalance.h).
+int printEnergy(const io::LutSet& set, bool json) {
+  const auto find = [&](const char* name) -> const Table4D* {
+    const auto it = set.tables.find(name);
+    return it == set.tables.end() ? nullptr : &it->second.table;
+  };
+  const Table4D* single = find("single_scattering");
+  const Table4D* multiple = find("multiple_scattering");
+  if (!single && !multiple) throw FileError(set.dir.string(), "no scattering tables to integrate");
+  const bake::EnergyBalance balance = bake::computeEnergyBalance(single, multiple);
+  if (json) {
+    nlohmann::json j = balance.toJson();
+    if (multiple) j["orders"] = multiple->parameters().value("orders", nlohmann::json());
+    std::printf("%s\n", j.dump(2).c_str());
+    return kExitOk;
+  }
+  const std::string orders = multiple ? multiple->parameters().value("orders", nlohmann::json("?")).dump() : "none";
+  std::printf("energy balance of %s (multiple scattering orders: %s)\n", set.dir.c_str(), orders.c_str());
+  std::printf("%10s %14s %12s %10s %10s %10s\n", "rho", "optical radius", "unscattered", "single", "multiple", "total");
+  for (const bake::EnergySlice& e : balance.slices) {
+    auto share = [](double v) { return v < 0 ? std::string("-") : std::to_string(v).substr(0, 6); };
+    std::printf("%10.4g %14.4g %12s %10s %10s %10s\n", e.rho, e.sigma, share(e.unscattered).c_str(),
+                share(e.single).c_str(), share(e.multiple).c_str(), share(e.total).c_str());
+  }
+  return kExitOk;
+}
+
 int runInfo(int argc, char** argv) {
   cxxopts::Options options("cloudlut info", "Describe a LUT file or a LUT directory.");
   options.add_options()("path", "LUT file or directory", cxxopts::value<std::string>())(
-      "json", "print JSON for scripts");
+      "json", "print JSON for scripts")(
+      "energy", "integrate the scattering tables: share of the incident power leaving unscattered, singly and multiply scattered, per density");
   options.parse_positional({"path"});
   options.positional_help("PATH");
   cxxopts::ParseResult args;
@@ -81,6 +110,10 @@ int runInfo(int argc, char** argv) {
   if (!fs::exists(path)) throw FileError(path.string(), "no such file or directory");
 
   nlohmann::json report;
+  if (args.count("energy")) {
+    if (!fs::is_directory(path)) throw UsageError("--energy needs a LUT directory with scattering tables");
+    return printEnergy(io::readLutSet(path), args.count("json") > 0);
+  }
   if (fs::is_directory(path)) {
     const io::LutSet set = io::readLutSet(path);
     report["directory"] = path.string();
