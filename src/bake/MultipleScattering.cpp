@@ -98,16 +98,20 @@ void cubicWeights(double x, int n, int& start, float w[4]) {
 
 void RadialAxis::cubic(double r, int& start, float w[4]) const { cubicWeights(q(r) * (n - 1), n, start, w); }
 
-// Quadrature along a ray in u = 1 − e^{−σs}: panels [0, U/16], [U/16, U/4], [U/4, U] with
-// the given numbers of Gauss points. Returns (s, weight) pairs: ∫_0^d σe^{−σs} f ds ≈ Σ w f(s).
+// Quadrature along a ray: ∫_0^d σe^{−σs} f(s) ds ≈ Σ w f(s). Near part (the first three mean
+// free paths, where the attenuation dominates) in u = 1 − e^{−σs} on the panels
+// [0, U₁/8] and [U₁/8, U₁], U₁ = 1 − e^{−min(σd, 3)}; far part (s > 3/σ) in s itself, where
+// the source may grow as fast as the light decays (light crossing the particle toward its dark
+// side) and u would crowd it into a singular corner. pts = points per panel.
 void rayRule(double sigma, double length, const int pts[3], std::vector<double>& s,
              std::vector<double>& w) {
   s.clear();
   w.clear();
-  const double U = -std::expm1(-sigma * std::max(length, 0.0));
-  const double edges[4] = {0.0, U / 16.0, U / 4.0, U};
-  for (int p = 0; p < 3; ++p) {
-    if (pts[p] <= 0) continue;
+  length = std::max(length, 0.0);
+  const double tau = sigma * length, tauNear = std::min(tau, 3.0);
+  const double U1 = -std::expm1(-tauNear);
+  const double edges[3] = {0.0, U1 / 8.0, U1};
+  for (int p = 0; p < 2; ++p) {
     const GaussRule& g = gaussLegendre(pts[p]);
     const double a = edges[p], h = edges[p + 1] - edges[p];
     for (int k = 0; k < pts[p]; ++k) {
@@ -116,12 +120,19 @@ void rayRule(double sigma, double length, const int pts[3], std::vector<double>&
       w.push_back(h * g.w[k]);
     }
   }
+  const GaussRule& g = gaussLegendre(pts[2]);
+  const double s0 = tauNear / sigma, h = length - s0;
+  for (int k = 0; k < pts[2]; ++k) {
+    const double sk = s0 + h * g.x[k];
+    s.push_back(sk);
+    w.push_back(tau > tauNear ? h * g.w[k] * sigma * std::exp(-sigma * sk) : 0.0);
+  }
 }
 
 void splitPoints(int total, int pts[3]) {
   pts[0] = std::max(1, total / 4);
-  pts[1] = std::max(1, total / 4);
-  pts[2] = std::max(1, total - pts[0] - pts[1]);
+  pts[2] = std::max(1, total / 4);
+  pts[1] = std::max(1, total - pts[0] - pts[2]);
 }
 
 // Deterministic inner product: fixed 4096-element blocks summed in order.
@@ -489,9 +500,7 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
   const auto& ax = table.axes();
   const int nS = ax[0].size, nP = ax[1].size, nV = ax[2].size;
   int gp[3];
-  gp[0] = std::max(2, res.gatherPoints / 4);
-  gp[1] = std::max(2, res.gatherPoints / 4);
-  gp[2] = std::max(2, res.gatherPoints - gp[0] - gp[1]);
+  splitPoints(res.gatherPoints, gp);
   const auto gather = [&](const std::vector<float>& field, Table4D& dst) {
   tbb::parallel_for(0, nS * nP, [&](int row) {
     const int iS = row % nS, iP = row / nS;

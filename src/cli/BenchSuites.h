@@ -19,6 +19,10 @@ struct BenchOptions {
 // density model at its default.
 void benchOpticalDepth(BenchReport& report, const BenchOptions& options);
 
+// Scattering tables (ScatteringBench.cpp): each method and resolution against the Monte Carlo
+// reference of the homogeneous sphere, with the energy balance of every bake.
+void benchScattering(BenchReport& report, const BenchOptions& options, const std::filesystem::path& out);
+
 // Renderer II: cloudscapes per quality preset and blend mode, ms per stage (generation,
 // occlusion, shading + blending, upscale) and frame-to-frame stability (src/cli/RenderBench.cpp).
 void benchRender(BenchReport& report, const BenchOptions& options);
