@@ -28,6 +28,7 @@ using glm::vec4;
 #define CLOUDLUT_FN inline
 #include "glsl/cloudlut_geometry.glsl"
 #include "glsl/cloudlut_phase.glsl"
+#include "glsl/cloudlut_shading.glsl"
 #undef CLOUDLUT_FN
 }  // namespace cloudlut::glsl
 

@@ -146,8 +146,10 @@ TEST_CASE("render: one particle's pixels match core/TableLookup within 1%", "[re
         if (s.chordLength < 0.2f || s.opticalDepth < 0.05f) continue;
         const float single = firstPhase(l1, glm::dot(dir, sun)) *
                              lookupScattering(l1, h.S, h.v, l, p.density * s.meanDensity);
-        const float multiple = lookupScattering(lm, h.S, h.v, l, p.density);
-        const float ambient = (1.0f - s.transmittance) * (1.0f - kAmbientEdgeDarkening * s.firstMatter);
+        const float tauHomogeneous = glsl::particleOpticalDepth(p.density, unitOpticalRadius(od), s.chordLength, 1.0f);
+        const float multiple = lookupScattering(lm, h.S, h.v, l, p.density) *
+                               glsl::multipleScatteringShare(s.opticalDepth, tauHomogeneous);
+        const float ambient = glsl::ambientScale(s.transmittance, s.firstMatter);
         const float distance = h.tEnter + s.firstMatter * (h.tExit - h.tEnter);
         INFO("pixel " << x << "," << y << " tau " << s.opticalDepth);
         maxRadiance = std::max(maxRadiance, relativeDifference(px[0], single + multiple));

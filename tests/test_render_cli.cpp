@@ -16,6 +16,7 @@
 #include <OpenEXR/ImfInputFile.h>
 
 #include "CliRunner.h"
+#include "core/Glsl.h"
 #include "core/Errors.h"
 #include "core/TableLookup.h"
 #include "render/Scene.h"
@@ -372,7 +373,9 @@ TEST_CASE("render CLI: pixels of one particle reproduce `cloudlut query` for the
 
   double maxRadiance = 0, maxTransmittance = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
-    const double radiance = single[i] + multiple[i];
+    // multiple scattering weighted by the ray's opacity over the homogeneous chord's (shading.glsl)
+    const float tauHomogeneous = glsl::particleOpticalDepth(p.density, static_cast<float>(sigma), rays[i].chord, 1.0f);
+    const double radiance = single[i] + multiple[i] * glsl::multipleScatteringShare(static_cast<float>(tau[i]), tauHomogeneous);
     maxRadiance = std::max(maxRadiance, std::abs(px[0][rays[i].pixel] - radiance) / radiance);
     maxTransmittance = std::max(maxTransmittance, std::abs(1.0 - px[1][rays[i].pixel] - transmittance[i]) / transmittance[i]);
   }

@@ -100,15 +100,37 @@ void RadialAxis::cubic(double r, int& start, float w[4]) const { cubicWeights(q(
 
 // Quadrature along a ray: ∫_0^d σe^{−σs} f(s) ds ≈ Σ w f(s). Near part (the first three mean
 // free paths, where the attenuation dominates) in u = 1 − e^{−σs} on the panels
-// [0, U₁/8] and [U₁/8, U₁], U₁ = 1 − e^{−min(σd, 3)}; far part (s > 3/σ) in s itself, where
+// [0, U₁/8] and [U₁/8, U₁], U₁ = 1 − e^{−min(σd, 6)}; far part (s > 6/σ) in s itself, where
 // the source may grow as fast as the light decays (light crossing the particle toward its dark
-// side) and u would crowd it into a singular corner. pts = points per panel.
+// side) and u would crowd it into a singular corner. pts = points per panel. Dense particles
+// (σ ≥ kFarPanelMaxSigma) use u over the whole ray: panels [0, U/16], [U/16, U/4], [U/4, U].
+constexpr double kNearOpticalDepth = 6.0;
+// Optical radius from which the far panel is dropped (see rayRule).
+constexpr double kFarPanelMaxSigma = 20.0;
+
 void rayRule(double sigma, double length, const int pts[3], std::vector<double>& s,
              std::vector<double>& w) {
   s.clear();
   w.clear();
   length = std::max(length, 0.0);
-  const double tau = sigma * length, tauNear = std::min(tau, 3.0);
+  const double tau = sigma * length;
+  if (sigma >= kFarPanelMaxSigma) {
+    // Dense: the far part carries nothing but a leak; all points in u (its far mass sits
+    // within a few mean free paths, where it belongs for the diffusion modes).
+    const double U = -std::expm1(-tau);
+    const double edges[4] = {0.0, U / 16.0, U / 4.0, U};
+    for (int p = 0; p < 3; ++p) {
+      const GaussRule& g = gaussLegendre(pts[p]);
+      const double a = edges[p], h = edges[p + 1] - edges[p];
+      for (int k = 0; k < pts[p]; ++k) {
+        const double u = a + h * g.x[k];
+        s.push_back(std::min(-std::log1p(-u) / sigma, length));
+        w.push_back(h * g.w[k]);
+      }
+    }
+    return;
+  }
+  const double tauNear = std::min(tau, kNearOpticalDepth);
   const double U1 = -std::expm1(-tauNear);
   const double edges[3] = {0.0, U1 / 8.0, U1};
   for (int p = 0; p < 2; ++p) {
@@ -122,17 +144,27 @@ void rayRule(double sigma, double length, const int pts[3], std::vector<double>&
   }
   const GaussRule& g = gaussLegendre(pts[2]);
   const double s0 = tauNear / sigma, h = length - s0;
+  const std::size_t first = w.size();
+  double sum = 0.0;
   for (int k = 0; k < pts[2]; ++k) {
     const double sk = s0 + h * g.x[k];
     s.push_back(sk);
     w.push_back(tau > tauNear ? h * g.w[k] * sigma * std::exp(-sigma * sk) : 0.0);
+    sum += w.back();
   }
+  // The far weights must carry exactly the far mass e^{−τ_near} − e^{−τ}: conservation of the
+  // discrete operator (a lost 10⁻³ per order would drain dense particles' slow modes).
+  const double mass = tau > tauNear ? std::exp(-tauNear) - std::exp(-tau) : 0.0;
+  if (sum > 0.0)
+    for (std::size_t k = first; k < w.size(); ++k) w[k] *= mass / sum;
+  else if (mass > 0.0)
+    w[first] = mass;
 }
 
 void splitPoints(int total, int pts[3]) {
-  pts[0] = std::max(1, total / 4);
-  pts[2] = std::max(1, total / 4);
-  pts[1] = std::max(1, total - pts[0] - pts[2]);
+  pts[0] = std::max(2, total / 5);
+  pts[2] = std::max(2, total / 4);
+  pts[1] = std::max(2, total - pts[0] - pts[2]);
 }
 
 // Deterministic inner product: fixed 4096-element blocks summed in order.

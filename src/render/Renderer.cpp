@@ -629,7 +629,6 @@ struct Renderer::Impl {
     gl.Uniform1f(uniform("uUnitOpticalRadius"), unitOpticalRadius);
     gl.Uniform1i(uniform("uFirstPhaseKind"), firstPhaseKind);
     gl.Uniform1f(uniform("uFirstPhaseParam"), firstPhaseParam);
-    gl.Uniform1f(uniform("uAmbientEdgeDarkening"), kAmbientEdgeDarkening);
     gl.Uniform1f(uniform("uMinOpacityForDistance"), kMinOpacityForDistance);
     gl.Uniform1f(uniform("uNoDistance"), kNoDistance);
     gl.Uniform1i(uniform("uUseOrder"), useOrder ? 1 : 0);

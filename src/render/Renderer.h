@@ -14,11 +14,12 @@
 //   single = P1(cos θ) · L1(S, v, l, ρ·T̄), P1 the single table's "first_phase", cos θ the
 //          world-space scattering angle (dir · sun; equal to v·l unless the particle is
 //          non-uniformly scaled);
-//   multiple = LM(S, v, l, ρ);
-//   ambient  = sky · (1 − e^{−τ}) · f(d), f(d) = 1 − kAmbientEdgeDarkening · d, d the
-//          distance to the first matter as a fraction of the chord (table channel 1): rays
-//          that meet matter at once (creases, cores) take the full sky light, rays that
-//          graze a particle's thin rim take half of it;
+//   multiple = LM(S, v, l, ρ) · multipleScatteringShare(τ, ρ·σ·L): the ray's opacity over the
+//          homogeneous chord's, so that the transparent fringe of a particle does not glow;
+//   ambient  = sky · ambientScale(e^{−τ}, d), d the distance to the first matter as a fraction
+//          of the chord (table channel 1): rays that meet matter at once take the full sky
+//          light, rays whose matter lies deep along the chord half of it;
+//   (both functions: lut_formats/glsl/cloudlut_shading.glsl, shared with the C++ tests)
 //   radiance = sunColor · sunlight · (single + multiple) + ambient, sunlight from the light-space
 //          occlusion pass (seed §5.3, shaders/occlusion.comp.glsl; 1 when disabled).
 // Blending, alpha: back to front, C ← radiance + e^{−τ}·C, T ← e^{−τ}·T. Volume (seed §5.5,
@@ -41,7 +42,6 @@ namespace cloudlut::render {
 
 enum Term : unsigned { kTermSingle = 1, kTermMultiple = 2, kTermAmbient = 4, kAllTerms = 7 };
 
-inline constexpr float kAmbientEdgeDarkening = 0.5f;
 // Pixels whose closest particle is more transparent than this carry no distance.
 inline constexpr float kMinOpacityForDistance = 1.0f / 256.0f;
 inline constexpr int kMaxImageSide = 16384;

@@ -11,7 +11,7 @@ namespace {
 
 const std::vector<std::string> kVertexFiles = {"particle_common.glsl", "particle.vert.glsl"};
 const std::vector<std::string> kFragmentFiles = {"cloudlut_geometry.glsl", "cloudlut_phase.glsl",
-                                                 "cloudlut_sampling.glsl", "particle_common.glsl",
+                                                 "cloudlut_sampling.glsl", "cloudlut_shading.glsl", "particle_common.glsl",
                                                  "particle.frag.glsl"};
 
 std::string assemble(const std::vector<std::string>& files, const std::string& defines = "") {

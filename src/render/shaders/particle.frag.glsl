@@ -24,7 +24,6 @@ uniform vec2 uMultipleDensityRange;
 uniform float uUnitOpticalRadius;    // sigma = extinction * radius of the optical-depth table
 uniform int uFirstPhaseKind;         // phaseFunction() kind and parameter of the single table
 uniform float uFirstPhaseParam;
-uniform float uAmbientEdgeDarkening; // f(d) = 1 - k * d, d = distance to first matter / chord
 uniform float uMinOpacityForDistance;
 uniform float uNoDistance;
 uniform int uVolume;  // 1: volume-aware blending (store the segment in the pixel's list)
@@ -72,7 +71,7 @@ void main() {
   // Optical depth (seed §4.4): tau = rho * sigma * L * mean density, L in unit-sphere units.
   vec2 od = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(S, v), uOpticalDepthDims).xy;
   float chord = chordLength(S, v);
-  float tau = rho * uUnitOpticalRadius * chord * od.x;
+  float tau = particleOpticalDepth(rho, uUnitOpticalRadius, chord, od.x);
   float transmittance = exp(-tau);
 
   // Single scattering: the homogeneous sphere of the ray's mean density, times the phase
@@ -86,12 +85,13 @@ void main() {
   float multiple = 0.0;
   if ((uTerms & 2) != 0) {
     vec4 x = scatteringAxes(S, v, l, rho, uMultipleDensityRange.x, uMultipleDensityRange.y);
-    multiple = cloudlutSample4D(uMultiple, x, uMultipleDims).x;
+    multiple = cloudlutSample4D(uMultiple, x, uMultipleDims).x *
+               multipleScatteringShare(tau, particleOpticalDepth(rho, uUnitOpticalRadius, chord, 1.0));
   }
   // Ambient: sky radiance, scaled by the opacity and by f(distance to the first matter).
   vec3 ambient = vec3(0.0);
   if ((uTerms & 4) != 0)
-    ambient = uSkyColor * (1.0 - transmittance) * (1.0 - uAmbientEdgeDarkening * clamp(od.y, 0.0, 1.0));
+    ambient = uSkyColor * ambientScale(transmittance, od.y);
 
   float sunlight = p.toWorld[0].w;  // sunlight reaching the particle (occlusion.comp.glsl)
   vec3 radiance = uSunColor * (sunlight * (single + multiple)) + ambient;
