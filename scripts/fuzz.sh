@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-20}
-command -v clang++ >/dev/null || { apt-get install -y -qq clang >/dev/null; }
+
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCLOUDLUT_FUZZ=ON >/dev/null
 cmake --build build-fuzz -j"$(nproc)" --target fuzz_binary_lut fuzz_exr_lut fuzz_manifest fuzz_scene fuzz_query_csv
 mkdir -p out/fuzz/crashes
