@@ -240,7 +240,8 @@ TEST_CASE("Multiple scattering agrees with the Monte Carlo reference at random g
   const auto& r18 = bakedDefault(18);
   for (int onNodes = 0; onNodes < 2; ++onNodes)
     for (int k : {0, 4, 7}) {
-      const SliceCheck c = checkSlice(*r18.single, *r18.multiple, k, 16, 20000, false, 900 + k + 10 * onNodes, onNodes);
+      const SliceCheck c = checkSlice(*r18.single, *r18.multiple, k, 16, k == 7 ? 10000 : 20000, false,
+                                      900 + k + 10 * onNodes, onNodes);
       INFO("18 orders, " << (onNodes ? "nodes" : "random") << ", slice " << k << ": median " << c.table.median
                          << " p95 " << c.table.p95 << " (MC noise median " << c.noise.median << ", p95 "
                          << c.noise.p95 << ", " << c.table.count << " rows)");
@@ -257,7 +258,7 @@ TEST_CASE("Multiple scattering agrees with the Monte Carlo reference at random g
 
 TEST_CASE("Scattering tables are identical for 1 and 2 threads", "[scattering]") {
   bake::ScatteringSettings s;
-  s.dims = {8, 8, 4, 3};
+  s.dims = {8, 8, 4, 2};
   s.orders = 5;
   bake::ScatteringResult a, b;
   {
@@ -272,7 +273,8 @@ TEST_CASE("Scattering tables are identical for 1 and 2 threads", "[scattering]")
   CHECK(a.multiple->data() == b.multiple->data());
   s.orders = 0;  // converged: GMRES inner products must not depend on scheduling either
   s.dims[3] = 2;
-  s.sMin = 2;
+  s.sMin = 0;
+  s.sMax = 1;
   {
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
     a = bake::bakeScattering(s);

@@ -108,15 +108,18 @@ constexpr double kNearOpticalDepth = 6.0;
 // Optical radius from which the far panel is dropped (see rayRule).
 constexpr double kFarPanelMaxSigma = 20.0;
 
-void rayRule(double sigma, double length, const int pts[3], std::vector<double>& s,
-             std::vector<double>& w) {
+void rayRule(double sigma, double length, int total, std::vector<double>& s, std::vector<double>& w) {
   s.clear();
   w.clear();
   length = std::max(length, 0.0);
   const double tau = sigma * length;
+  int pts[3];
   if (sigma >= kFarPanelMaxSigma) {
     // Dense: the far part carries nothing but a leak; all points in u (its far mass sits
     // within a few mean free paths, where it belongs for the diffusion modes).
+    pts[0] = std::max(2, total / 4);
+    pts[1] = std::max(2, total / 4);
+    pts[2] = std::max(2, total - pts[0] - pts[1]);
     const double U = -std::expm1(-tau);
     const double edges[4] = {0.0, U / 16.0, U / 4.0, U};
     for (int p = 0; p < 3; ++p) {
@@ -130,6 +133,9 @@ void rayRule(double sigma, double length, const int pts[3], std::vector<double>&
     }
     return;
   }
+  pts[0] = std::max(2, total / 5);
+  pts[2] = std::max(2, total / 4);
+  pts[1] = std::max(2, total - pts[0] - pts[2]);
   const double tauNear = std::min(tau, kNearOpticalDepth);
   const double U1 = -std::expm1(-tauNear);
   const double edges[3] = {0.0, U1 / 8.0, U1};
@@ -161,11 +167,6 @@ void rayRule(double sigma, double length, const int pts[3], std::vector<double>&
     w[first] = mass;
 }
 
-void splitPoints(int total, int pts[3]) {
-  pts[0] = std::max(2, total / 5);
-  pts[2] = std::max(2, total / 4);
-  pts[1] = std::max(2, total - pts[0] - pts[2]);
-}
 
 // Deterministic inner product: fixed 4096-element blocks summed in order.
 double dot(const std::vector<float>& a, const std::vector<float>& b) {
@@ -287,9 +288,10 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
 
   // --- Transport stencil: K points per (node, direction).
   const auto t1 = std::chrono::steady_clock::now();
-  int pts[3];
-  splitPoints(res.transportPoints, pts);
-  const int K = pts[0] + pts[1] + pts[2];
+  // Points per ray: the rule's panels may round the total up (at least 2 points each).
+  std::vector<double> probeS, probeW;
+  rayRule(sigma, 2.0, res.transportPoints, probeS, probeW);
+  const int K = static_cast<int>(probeS.size());
   std::vector<StencilEntry> stencil(N * K);
   const std::size_t strideR = static_cast<std::size_t>(nt) * D, strideT = D;
   tbb::parallel_for(0, NS, [&](int s) {
@@ -299,7 +301,7 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
       const int ia = d / nb;
       const glm::dvec3 w = sh.coarse.direction(d);
       const double len = distanceToSphere(x, -w);
-      rayRule(sigma, len, pts, ss, ww);
+      rayRule(sigma, len, res.transportPoints, ss, ww);
       const double wh = std::hypot(w.x, w.y);
       StencilEntry* e = &stencil[(static_cast<std::size_t>(s) * D + d) * K];
       for (int k = 0; k < K; ++k) {
@@ -531,8 +533,6 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
   const auto t3 = std::chrono::steady_clock::now();
   const auto& ax = table.axes();
   const int nS = ax[0].size, nP = ax[1].size, nV = ax[2].size;
-  int gp[3];
-  splitPoints(res.gatherPoints, gp);
   const auto gather = [&](const std::vector<float>& field, Table4D& dst) {
   tbb::parallel_for(0, nS * nP, [&](int row) {
     const int iS = row % nS, iP = row / nS;
@@ -544,7 +544,7 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
       const double thV = ax[2].value(iV);
       const glm::dvec3 v = std::sin(thV) * (std::cos(phV) * fx + std::sin(phV) * fy) - std::cos(thV) * S;
       const double chord = std::max(0.0, -2.0 * glm::dot(S, v));
-      rayRule(sigma, chord, gp, ss, ww);
+      rayRule(sigma, chord, res.gatherPoints, ss, ww);
       const glm::dvec3 w = -v;
       int ia;
       double fad;

@@ -19,10 +19,10 @@ double distanceToSphere(const glm::dvec3& x, const glm::dvec3& d);
 // sphere surface.
 inline double sunPath(const glm::dvec3& x, const glm::dvec3& l) { return distanceToSphere(x, l); }
 
-// ∫_0^length σ e^{-σt} e^{-σ d_sun(x + t d)} dt: light scattered once (phase excluded) arriving
-// at x from direction −d... i.e. gathered along the ray x + t d. The log-integrand is convex
-// (d_sun is concave along a line), so the mass sits at the ends: composite 8-point
-// Gauss–Legendre panels graded geometrically toward both ends.
+// ∫_0^length σ e^{-σt} e^{-σ d_sun(x + t d)} dt: sunlight scattered once (phase excluded) and
+// gathered along the ray x + t d, i.e. the radiance arriving at x from the direction d points
+// to. The log-integrand is convex (d_sun is concave along a line), so the mass sits at the
+// ends: composite 8-point Gauss–Legendre panels graded geometrically toward both ends.
 double sunlitRayIntegral(const glm::dvec3& x, const glm::dvec3& d, const glm::dvec3& l,
                          double sigma, double length);
 
