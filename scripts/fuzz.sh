@@ -1,18 +1,19 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang (ASan + UBSan) into build-fuzz/ and runs each for
-# SECONDS seconds (default 20: the CI smoke run; pass more for a real campaign).
+# Builds cloudlut with clang, AddressSanitizer, UndefinedBehaviorSanitizer and the libFuzzer
+# targets into build-fuzz/ (the same build runs the sanitized test suite: scripts/test.sh), and
+# runs each fuzz target for SECONDS seconds (default 20: the CI smoke run; more for a campaign).
 # Seeds come from tests/fuzz/corpus/NAME; new inputs go to out/fuzz/corpus/NAME, crashes to
 # out/fuzz/crashes (turn each into a regression test in tests/ with its input).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-20}
-
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCLOUDLUT_FUZZ=ON >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_binary_lut fuzz_exr_lut fuzz_manifest fuzz_scene fuzz_query_csv
+targets=(fuzz_binary_lut fuzz_exr_lut fuzz_manifest fuzz_scene fuzz_query_csv)
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCLOUDLUT_FUZZ=ON >/dev/null
+cmake --build build-fuzz -j"$(nproc)" --target "${targets[@]}"
 mkdir -p out/fuzz/crashes
 export ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1
 status=0
-for t in fuzz_binary_lut fuzz_exr_lut fuzz_manifest fuzz_scene fuzz_query_csv; do
+for t in "${targets[@]}"; do
   mkdir -p "out/fuzz/corpus/$t"
   echo "fuzzing $t for ${seconds}s"
   if ! ./build-fuzz/tests/fuzz/$t "out/fuzz/corpus/$t" "tests/fuzz/corpus/$t" -max_total_time="$seconds" \

@@ -27,26 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// "x,y,z" → three finite numbers (non-negative when `colour`); UsageError naming the option.
-glm::vec3 parseVec3(const std::string& text, const std::string& option, bool colour) {
-  const std::string expected = colour ? "three comma-separated non-negative numbers r,g,b"
-                                      : "three comma-separated numbers x,y,z";
-  glm::vec3 v(0.0f);
-  std::size_t start = 0;
-  for (int k = 0; k < 3; ++k) {
-    const std::size_t end = k < 2 ? text.find(',', start) : text.size();
-    if (end == std::string::npos) throw UsageError("--" + option + ": expected " + expected + ", got '" + text + "'");
-    const std::string part = text.substr(start, end - start);
-    double value = 0.0;
-    const auto r = std::from_chars(part.data(), part.data() + part.size(), value);
-    if (part.empty() || r.ec != std::errc() || r.ptr != part.data() + part.size() || !std::isfinite(value) ||
-        std::abs(value) > 1e30 || (colour && value < 0.0))
-      throw UsageError("--" + option + ": expected " + expected + ", got '" + text + "'");
-    v[k] = static_cast<float>(value);
-    start = end + 1;
-  }
-  return v;
-}
 
 unsigned parseTerms(const std::string& text) {
   unsigned terms = 0;
@@ -96,16 +76,10 @@ int runRender(int argc, char** argv) {
     ("out", "output image: FILE.png (tone-mapped sRGB) or FILE.exr (linear RGB, A = 1 - transmittance, Z)", cxxopts::value<std::string>())
     ("width", "image width in pixels", cxxopts::value<long long>()->default_value("640"))
     ("height", "image height in pixels", cxxopts::value<long long>()->default_value("360"))
-    ("eye", "camera position x,y,z (overrides the scene)", cxxopts::value<std::string>())
-    ("target", "point the camera looks at x,y,z (overrides the scene)", cxxopts::value<std::string>())
-    ("up", "camera up vector x,y,z (overrides the scene; default 0,1,0)", cxxopts::value<std::string>())
-    ("fov", "vertical field of view, degrees (overrides the scene; default 45)", cxxopts::value<double>())
-    ("sun", "direction toward the sun x,y,z (overrides the scene)", cxxopts::value<std::string>())
-    ("sun-color", "sun irradiance r,g,b (overrides the scene; default 1,1,1)", cxxopts::value<std::string>())
-    ("sky-color", "sky radiance r,g,b: ambient light and PNG background (overrides the scene)", cxxopts::value<std::string>())
     ("exposure", "PNG tone mapping: 1 - exp(-exposure * radiance)", cxxopts::value<double>()->default_value("5"))
     ("terms", "lighting terms: single, multiple, ambient, all (comma-separated)", cxxopts::value<std::string>()->default_value("all"))
     ("quiet", "print nothing on success");
+  addViewOptions(options);      // camera and light: cli/SceneCli.h
   addRayMarchOptions(options);  // --method raymarch: cli/SceneCli.h
   cxxopts::ParseResult args;
   if (!parseOptions(options, argc, argv, args)) return kExitOk;
@@ -123,19 +97,7 @@ int runRender(int argc, char** argv) {
   render::checkImageSize(width, height);
   const double exposure = requirePositive(args["exposure"].as<double>(), "exposure");
 
-  render::ViewSettings overrides;
-  if (args.count("eye")) overrides.eye = parseVec3(args["eye"].as<std::string>(), "eye", false);
-  if (args.count("target")) overrides.target = parseVec3(args["target"].as<std::string>(), "target", false);
-  if (args.count("up")) overrides.up = parseVec3(args["up"].as<std::string>(), "up", false);
-  if (args.count("fov")) {
-    const double fov = args["fov"].as<double>();
-    if (!(fov > 0.0 && fov <= 179.0)) throw UsageError("--fov: expected degrees in (0, 179]");
-    overrides.fovDeg = static_cast<float>(fov);
-  }
-  if (args.count("sun")) overrides.sunDirection = parseVec3(args["sun"].as<std::string>(), "sun", false);
-  if (args.count("sun-color")) overrides.sunColor = parseVec3(args["sun-color"].as<std::string>(), "sun-color", true);
-  if (args.count("sky-color")) overrides.skyColor = parseVec3(args["sky-color"].as<std::string>(), "sky-color", true);
-  if (overrides.up && !(glm::length(*overrides.up) > 0.0f)) throw UsageError("--up: must not be zero");
+  const render::ViewSettings overrides = parseViewOverrides(args);
 
   render::RenderSettings settings;
   settings.width = static_cast<int>(width);
