@@ -55,7 +55,9 @@ inline cloudlut::Table4D makeTable(std::array<int, 4> dims, int channels, float 
                                           {"extra_a", "test channel"}};
   names.resize(static_cast<std::size_t>(channels));
   cloudlut::Table4D table(name, axes, names);
-  table.parameters() = {{"extinction", 0.07}, {"radius", 183.8}, {"model", "test"}};
+  // built first, then moved in: clang 14 leaks the old value of `json& = {init-list}`
+  nlohmann::json parameters = {{"extinction", 0.07}, {"radius", 183.8}, {"model", "test"}};
+  table.parameters() = std::move(parameters);
   std::uint32_t state = seed;
   for (float& v : table.data()) {
     state = state * 1664525u + 1013904223u;

@@ -37,7 +37,9 @@ Table4D syntheticScatteringTable(const std::string& name, const std::array<int, 
         for (int i0 = 0; i0 < dims[0]; ++i0)
           t.at(t.index(i0, i1, i2, i3), 0) = static_cast<float>(
               value(axes[0].value(i0), axes[1].value(i1), axes[2].value(i2), axes[3].value(i3)));
-  t.parameters() = {{"extinction_per_m", 0.07}, {"radius_m", 183.8}, {"synthetic", true}};
+  // built first, then moved in: clang 14 leaks the old value of `json& = {init-list}`
+  nlohmann::json parameters = {{"extinction_per_m", 0.07}, {"radius_m", 183.8}, {"synthetic", true}};
+  t.parameters() = std::move(parameters);
   return t;
 }
 

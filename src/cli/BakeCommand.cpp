@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <optional>
 #include <set>
@@ -17,6 +18,7 @@
 #include "bake/ScatteringBaker.h"
 #include "cli/Command.h"
 #include "cli/Options.h"
+#include "cli/SceneNeeds.h"
 #include "cli/TtyProgress.h"
 #include "core/Defaults.h"
 #include "core/Errors.h"
@@ -138,6 +140,43 @@ void configureScattering(BakePlan& plan, const cxxopts::ParseResult& args) {
   sc.multiple = plan.tables.count("multiple") > 0;
 }
 
+// What --for-scene skipped and saved against the default bake (64×32×64×32, 8 density slices).
+void printSceneReport(const BakePlan& plan, const SceneNeeds& needs, const nlohmann::json& forScene,
+                      const nlohmann::json& timings) {
+  std::printf("for scene %s (%s", needs.source.c_str(), needs.kind.c_str());
+  if (needs.particles) std::printf(", %zu particles", needs.particles);
+  std::printf("): density scales %.4g to %.4g\n", needs.rhoMin, needs.rhoMax);
+  double bytes = 0, defaultBytes = 0, seconds = 0, defaultSeconds = 0;
+  const double sampleBytes = plan.precision == io::SampleType::Float ? 4 : 2;
+  if (plan.tables.count("optical-depth")) {
+    const auto& d = plan.od.dims;
+    const double nodes = double(d[0]) * d[1] * d[2] * d[3], defaultNodes = 64.0 * 32 * 64 * 32;
+    const double odBytes = plan.precision == io::SampleType::U8 ? 1 : sampleBytes;
+    bytes += 2 * odBytes * nodes;
+    defaultBytes += 2 * odBytes * defaultNodes;
+    const double t = forScene.value("optical_depth_bake_s", 0.0);
+    seconds += t;
+    defaultSeconds += t * defaultNodes / nodes;  // the bake's time is proportional to its chords
+    const double err = forScene.value("optical_depth_opacity_error_p95", 0.0), tol = forScene.value("tolerance", 0.0);
+    std::printf("  optical depth: %dx%dx%dx%d (95th-percentile opacity error %.4f, tolerance %.4f%s)\n", d[0], d[1], d[2],
+                d[3], err, tol, err > tol ? "; NOT met: the largest table a GL 3D texture holds" : "");
+  }
+  if (plan.tables.count("single") || plan.tables.count("multiple")) {
+    const auto& d = plan.sc.dims;
+    const int tables = int(plan.tables.count("single") + plan.tables.count("multiple"));
+    bytes += tables * sampleBytes * double(d[0]) * d[1] * d[2] * d[3];
+    defaultBytes += tables * sampleBytes * double(d[0]) * d[1] * d[2] * 8;
+    const double t = timings.value("scattering_s", 0.0);
+    seconds += t;
+    defaultSeconds += t * 8.0 / d[3];  // each density slice costs about the same
+    std::printf("  scattering: density slices log2 rho = %g..%g (%d of the default 8 spanning -4..3)\n", plan.sc.sMin,
+                plan.sc.sMax, d[3]);
+  }
+  std::printf("  saved: %.1f of %.1f MB per format (%.0f%%), about %.1f of %.1f s (estimated from this bake's rates)\n",
+              (defaultBytes - bytes) / 1e6, defaultBytes / 1e6, 100.0 * (defaultBytes - bytes) / defaultBytes,
+              defaultSeconds - seconds, defaultSeconds);
+}
+
 int runBake(int argc, char** argv) {
   cxxopts::Options options("cloudlut bake", "Compute look-up tables into a LUT directory.");
   options.add_options()
@@ -152,6 +191,9 @@ int runBake(int argc, char** argv) {
     ("droplet-um", "droplet diameter in micrometres for jd (one phase for every order)", cxxopts::value<double>()->default_value("10"))
     ("orders", "highest scattering order in the multiple table, or 'converged' for all of them", cxxopts::value<std::string>()->default_value("18"))
     ("method", "scattering method: fast (ours) or paper (the seed's algorithm, slow)", cxxopts::value<std::string>()->default_value("fast"))
+    ("for-scene", "bake only what a scene needs (particle JSON, cloudscape preset or file): its density range, and the smallest optical-depth table within --tolerance; overrides --densities and --res-od", cxxopts::value<std::string>())
+    ("quality", "--for-scene with a cloudscape: grid preset low, medium or high", cxxopts::value<std::string>()->default_value("medium"))
+    ("tolerance", "--for-scene: largest 95th-percentile opacity error from the optical-depth table's interpolation", cxxopts::value<double>()->default_value("0.01"))
     ("density-model", "reference particle: noise, threshold, pyroclastic, radial, sphere", cxxopts::value<std::string>()->default_value("noise"))
     ("seed", "noise seed", cxxopts::value<std::uint64_t>()->default_value("1"))
     ("steps", "density samples per particle diameter along each chord (0 = the model's measured default)", cxxopts::value<int>()->default_value("0"))
@@ -190,6 +232,19 @@ int runBake(int argc, char** argv) {
   const bool scattering = plan.tables.count("single") || plan.tables.count("multiple");
   if (scattering) configureScattering(plan, args);
 
+  std::optional<SceneNeeds> needs;
+  if (args.count("for-scene")) {
+    const double tolerance = args["tolerance"].as<double>();
+    if (!(tolerance > 0.0 && tolerance < 1.0)) throw UsageError("--tolerance must lie in (0, 1)");
+    needs = readSceneNeeds(args["for-scene"].as<std::string>(), args["quality"].as<std::string>());
+    if (scattering) {
+      const auto s = densitySlicesFor(*needs);
+      plan.sc.sMin = s[0];
+      plan.sc.sMax = s[1];
+      plan.sc.dims[3] = s[1] - s[0] + 1;
+    }
+  }
+
   if (plan.tables.count("optical-depth")) checkTableFitsInMemory(plan.od.dims, 2);
   if (scattering) checkTableFitsInMemory(plan.sc.dims, 1, 2);
   const auto threadLimit = limitThreads(plan.threads);
@@ -198,10 +253,22 @@ int runBake(int argc, char** argv) {
   const ProgressFn progress = makeTtyProgress(plan.quiet);
   nlohmann::json entries = nlohmann::json::object();
   nlohmann::json timings = nlohmann::json::object();
+  nlohmann::json forScene = nlohmann::json::object();
   if (plan.tables.count("optical-depth")) {
     const auto t0 = std::chrono::steady_clock::now();
     const ReferenceParticle particle(plan.model, plan.seed);
+    if (needs) {
+      reportProgress(progress, "choosing the resolution", 0.0);
+      const int steps = plan.od.steps > 0 ? plan.od.steps : bake::defaultSteps(plan.model);
+      const OpticalDepthChoice choice = chooseOpticalDepthResolution(
+          particle, *needs, args["tolerance"].as<double>(), plan.od.extinction * plan.od.radius, steps);
+      plan.od.dims = choice.dims;
+      forScene["optical_depth_dims"] = choice.dims;
+      forScene["optical_depth_opacity_error_p95"] = choice.errorP95;
+    }
+    const auto tBake = std::chrono::steady_clock::now();
     const Table4D table = bake::bakeOpticalDepth(particle, plan.od, progress);
+    forScene["optical_depth_bake_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - tBake).count();
     timings["optical_depth_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     finishTtyProgress();
     writeTable(plan, table, plan.precision, entries);
@@ -231,8 +298,16 @@ int runBake(int argc, char** argv) {
     manifest["scattering_report"] = scatteringReport;
   }
   manifest["bake_seconds"] = timings;
+  if (needs) {
+    forScene["scene"] = needs->source;
+    forScene["kind"] = needs->kind;
+    forScene["density_range"] = {needs->rhoMin, needs->rhoMax};
+    forScene["tolerance"] = args["tolerance"].as<double>();
+    manifest["for_scene"] = forScene;
+  }
   manifest["tables"] = entries;
   io::writeManifest(plan.out, manifest);
+  if (needs && !plan.quiet) printSceneReport(plan, *needs, forScene, timings);
   if (!plan.quiet && isatty(STDERR_FILENO))
     std::fprintf(stderr, "wrote %zu table(s) to %s\n", entries.size(), plan.out.c_str());
   return kExitOk;

@@ -39,7 +39,9 @@ Table4D syntheticScattering(const std::string& name, bool single) {
                                   : 0.08 * (1.0 + 0.5 * std::tanh(0.5 * s)) * (1.0 + 0.5 * std::cos(ts));
           t.at(t.index(i0, i1, i2, i3), 0) = static_cast<float>(v);
         }
-  t.parameters() = {{"extinction_per_m", 0.07}, {"radius_m", 183.8}, {"synthetic", true}};
+  // built first, then moved in: clang 14 leaks the old value of `json& = {init-list}`
+  nlohmann::json parameters = {{"extinction_per_m", 0.07}, {"radius_m", 183.8}, {"synthetic", true}};
+  t.parameters() = std::move(parameters);
   if (single) t.parameters()["first_phase"] = {{"kind", 2}, {"param", 0.9}};
   return t;
 }
