@@ -2,6 +2,8 @@
 // (layout and attributes: lut_formats/FORMAT.md).
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
+#include <cstring>
+
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
@@ -116,9 +118,32 @@ void writeExrLut(const Table4D& table, SampleType type, const std::filesystem::p
 
 namespace {
 
+// Largest atlas side and area a LUT can have (the default optical-depth atlas is 4096×1024).
+// Checked on the header alone, before OpenEXR sizes its line-offset table and buffers from a
+// possibly corrupt data window: a 774-byte file must not make the reader allocate gigabytes.
+constexpr long long kMaxAtlasSide = 1 << 16;
+constexpr long long kMaxAtlasPixels = 1LL << 30;
+
+void checkHeaderBeforeDecoding(const std::string& name, const std::string& bytes) {
+  MemoryIStream probe(name, bytes);
+  char magicAndVersion[8];
+  probe.read(magicAndVersion, 8);
+  int version = 0;
+  std::memcpy(&version, magicAndVersion + 4, sizeof version);  // little-endian on every supported host
+  Imf::Header header;
+  header.readFrom(probe, version);
+  const Imath::Box2i w = header.dataWindow();
+  const long long width = static_cast<long long>(w.max.x) - w.min.x + 1;
+  const long long height = static_cast<long long>(w.max.y) - w.min.y + 1;
+  if (width < 1 || height < 1 || width > kMaxAtlasSide || height > kMaxAtlasSide || width * height > kMaxAtlasPixels)
+    throw FileError(name, "not a cloudlut LUT (EXR data window " + std::to_string(width) + "x" +
+                              std::to_string(height) + " is outside any LUT atlas)");
+}
+
 // Decodes an EXR held in memory; OpenEXR's exceptions pass through to the caller.
 LoadedTable decodeExr(const std::filesystem::path& path, const std::string& bytes) {
   const std::string name = path.string();
+  checkHeaderBeforeDecoding(name, bytes);
   MemoryIStream is(name, bytes);
   Imf::InputFile file(is);
   const Imf::Header& header = file.header();
