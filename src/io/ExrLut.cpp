@@ -124,7 +124,40 @@ namespace {
 constexpr long long kMaxAtlasSide = 1 << 16;
 constexpr long long kMaxAtlasPixels = 1LL << 30;
 
+// Walks the attribute list of a single-part EXR header (name\0 type\0 int32 size, value;
+// an empty name ends it) and rejects any attribute whose declared size exceeds the bytes left:
+// OpenEXR would allocate that size before finding the file short.
+void checkAttributeSizes(const std::string& name, const std::string& bytes) {
+  if (bytes.size() < 8) throw FileError(name, "not a readable EXR file (too short)");
+  std::uint32_t flags = 0;
+  std::memcpy(&flags, bytes.data() + 4, sizeof flags);
+  if (flags & 0x1000u) throw FileError(name, "not a cloudlut LUT (multi-part EXR)");
+  std::size_t pos = 8;
+  auto readString = [&](const char* what) {
+    const std::size_t end = bytes.find('\0', pos);
+    if (end == std::string::npos || end - pos > 255)
+      throw FileError(name, std::string("not a readable EXR file (corrupt header: attribute ") + what + ")");
+    std::string text = bytes.substr(pos, end - pos);
+    pos = end + 1;
+    return text;
+  };
+  for (int attributes = 0; attributes < 10000; ++attributes) {
+    if (readString("name").empty()) return;
+    readString("type");
+    if (bytes.size() - pos < 4) throw FileError(name, "not a readable EXR file (corrupt header: truncated)");
+    std::int32_t size = 0;
+    std::memcpy(&size, bytes.data() + pos, sizeof size);
+    pos += 4;
+    if (size < 0 || static_cast<std::size_t>(size) > bytes.size() - pos)
+      throw FileError(name, "not a readable EXR file (corrupt header: an attribute claims " + std::to_string(size) +
+                                " bytes, " + std::to_string(bytes.size() - pos) + " remain)");
+    pos += static_cast<std::size_t>(size);
+  }
+  throw FileError(name, "not a readable EXR file (corrupt header: too many attributes)");
+}
+
 void checkHeaderBeforeDecoding(const std::string& name, const std::string& bytes) {
+  checkAttributeSizes(name, bytes);
   MemoryIStream probe(name, bytes);
   char magicAndVersion[8];
   probe.read(magicAndVersion, 8);
