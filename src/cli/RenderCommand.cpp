@@ -28,21 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 
 
-unsigned parseTerms(const std::string& text) {
-  unsigned terms = 0;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t end = std::min(text.find(',', start), text.size());
-    const std::string t = text.substr(start, end - start);
-    if (t == "single") terms |= render::kTermSingle;
-    else if (t == "multiple") terms |= render::kTermMultiple;
-    else if (t == "ambient") terms |= render::kTermAmbient;
-    else if (t == "all") terms |= render::kAllTerms;
-    else throw UsageError("--terms: unknown term '" + t + "' (single, multiple, ambient, all)");
-    start = end + 1;
-  }
-  return terms;
-}
 
 // OUT with "_NNNN" before the extension (frame sequences).
 fs::path framePath(const fs::path& out, int frame) {
@@ -102,7 +87,7 @@ int runRender(int argc, char** argv) {
   render::RenderSettings settings;
   settings.width = static_cast<int>(width);
   settings.height = static_cast<int>(height);
-  settings.terms = parseTerms(args["terms"].as<std::string>());
+  settings.terms = parseTermList(args["terms"].as<std::string>());
   settings.blend = args.count("blend") ? render::parseBlendMode(args["blend"].as<std::string>())
                                        : particles ? render::BlendMode::Alpha : render::BlendMode::Volume;
   settings.downscale = args["downscale"].as<int>();

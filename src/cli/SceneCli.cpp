@@ -182,8 +182,6 @@ bool wantsRayMarch(const cxxopts::ParseResult& args) {
   throw UsageError("--method: unknown method '" + m + "' (particles, raymarch)");
 }
 
-namespace {
-
 unsigned parseTermList(const std::string& text) {
   unsigned terms = 0;
   std::size_t start = 0;
@@ -199,8 +197,6 @@ unsigned parseTermList(const std::string& text) {
   }
   return terms;
 }
-
-}  // namespace
 
 int runRayMarchRender(const cxxopts::ParseResult& args) {
   for (const char* required : {"particles", "out"})

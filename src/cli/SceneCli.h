@@ -45,6 +45,9 @@ MediumSpec parseMedium(const cxxopts::ParseResult& args);
 // "x,y,z" → three finite numbers (non-negative when `colour`); UsageError naming the option.
 glm::vec3 parseVec3Option(const std::string& text, const std::string& option, bool colour);
 
+// "single,multiple,ambient|all" → render::Term bits; UsageError naming --terms.
+unsigned parseTermList(const std::string& text);
+
 // Adds --method (particles | raymarch) and the ray marcher's options to `cloudlut render`.
 void addRayMarchOptions(cxxopts::Options& options);
 // True when the parsed render arguments ask for --method raymarch (UsageError for an unknown
