@@ -1,18 +1,23 @@
 // The EXR atlas format: the 3D texture's depth slices laid out as tiles of one 2D image
 // (layout and attributes: lut_formats/FORMAT.md).
+#include <OpenEXR/ImfAttribute.h>
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCompression.h>
 #include <OpenEXR/ImfFrameBuffer.h>
-#include <cstring>
-
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfLineOrder.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfPixelType.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <Imath/half.h>
 
 #include <climits>
+#include <cstring>
 #include <fstream>
+#include <iterator>
+#include <string_view>
 #include <vector>
 
 #include "core/Errors.h"
@@ -28,6 +33,7 @@ namespace {
 
 constexpr int kExrFormatVersion = 1;
 constexpr const char* kChannelNames[4] = {"R", "G", "B", "A"};
+constexpr int kMaxChannels = static_cast<int>(std::size(kChannelNames));
 
 // Position in the interleaved atlas (x = i2·N0 + i0, y = i3·N1 + i1) of node (i0, i1, i2, i3),
 // in units of pixels.
@@ -123,54 +129,186 @@ namespace {
 // possibly corrupt data window: a 774-byte file must not make the reader allocate gigabytes.
 constexpr long long kMaxAtlasSide = 1 << 16;
 constexpr long long kMaxAtlasPixels = 1LL << 30;
+// Longest string attribute, and longest "cloudlut" description (about 1 KB in practice), so
+// that a large file cannot make the reader hold a large string either.
+constexpr std::size_t kMaxStringBytes = 1 << 20;
+constexpr std::size_t kMaxDescriptionBytes = 1 << 16;
+// Longest attribute, type or channel name OpenEXR reads (Imf::Name::MAX_LENGTH).
+constexpr std::size_t kMaxNameBytes = 255;
 
-// Walks the attribute list of a single-part EXR header (name\0 type\0 int32 size, value;
-// an empty name ends it) and rejects any attribute whose declared size exceeds the bytes left:
-// OpenEXR would allocate that size before finding the file short.
-void checkAttributeSizes(const std::string& name, const std::string& bytes) {
-  if (bytes.size() < 8) throw FileError(name, "not a readable EXR file (too short)");
-  std::uint32_t flags = 0;
-  std::memcpy(&flags, bytes.data() + 4, sizeof flags);
-  if (flags & 0x1000u) throw FileError(name, "not a cloudlut LUT (multi-part EXR)");
+// Header validation, before OpenEXR parses anything. OpenEXR's header parser reads each
+// attribute's declared size, but it parses the value of a type it knows by content: a fixed-size
+// type reads its own size, a channel list reads entries up to its terminating NUL. A value whose
+// content does not fill exactly its declared size shifts every later attribute, and OpenEXR then
+// allocates whatever size the shifted bytes claim (up to 2 GiB) before it finds the file short.
+// So each attribute of a type OpenEXR knows is checked here by content, within its declared size;
+// a type it does not know is read as opaque bytes of the declared size, which must fit the file.
+
+// One attribute as it sits in the header: the bytes its declared size covers.
+struct HeaderAttribute {
+  std::string name;
+  std::string type;
+  std::string_view value;
+};
+
+std::int32_t int32At(std::string_view bytes, std::size_t pos) {
+  std::int32_t v = 0;
+  std::memcpy(&v, bytes.data() + pos, sizeof v);  // little-endian on every supported host
+  return v;
+}
+
+[[noreturn]] void corruptHeader(const std::string& file, const std::string& why) {
+  throw FileError(file, "not a readable EXR file (corrupt header: " + why + ")");
+}
+
+// The data window and every other box2i: a window the size of a LUT atlas, no larger.
+void checkWindow(const std::string& file, const HeaderAttribute& a) {
+  const long long width = static_cast<long long>(int32At(a.value, 8)) - int32At(a.value, 0) + 1;
+  const long long height = static_cast<long long>(int32At(a.value, 12)) - int32At(a.value, 4) + 1;
+  if (width < 1 || height < 1 || width > kMaxAtlasSide || height > kMaxAtlasSide || width * height > kMaxAtlasPixels)
+    throw FileError(file, "not a cloudlut LUT (EXR " + a.name + " " + std::to_string(width) + "x" +
+                              std::to_string(height) + " is outside any LUT atlas)");
+}
+
+// chlist: 1 to 4 entries (the writer's R, G, B, A), each a name of 1 to 255 bytes and its NUL,
+// int32 pixel type (UINT, HALF or FLOAT), uint8 pLinear, 3 reserved bytes, int32 x and y
+// sampling (1: LUT channels are full resolution), then a NUL that must be the value's last byte.
+void checkChannelList(const std::string& file, const HeaderAttribute& a) {
+  constexpr std::size_t kEntryFields = 16;
+  std::size_t pos = 0;
+  for (int channels = 0;; ++channels) {
+    const std::size_t end = a.value.find('\0', pos);
+    if (end == std::string_view::npos) corruptHeader(file, "channel list \"" + a.name + "\" is not terminated");
+    if (end == pos) {
+      if (channels == 0) corruptHeader(file, "channel list \"" + a.name + "\" is empty");
+      if (end + 1 != a.value.size())
+        corruptHeader(file, "channel list \"" + a.name + "\" ends " + std::to_string(a.value.size() - end - 1) +
+                                " bytes before its declared size");
+      return;
+    }
+    if (end - pos > kMaxNameBytes) corruptHeader(file, "channel name longer than 255 bytes");
+    if (channels == kMaxChannels)
+      throw FileError(file, "not a cloudlut LUT (more than " + std::to_string(kMaxChannels) + " channels)");
+    const std::string channel(a.value.substr(pos, end - pos));
+    pos = end + 1;
+    if (a.value.size() - pos < kEntryFields) corruptHeader(file, "channel " + channel + " runs past its list");
+    const std::int32_t pixelType = int32At(a.value, pos);
+    if (pixelType < Imf::UINT || pixelType > Imf::FLOAT)
+      corruptHeader(file, "channel " + channel + " has pixel type " + std::to_string(pixelType));
+    if (int32At(a.value, pos + 8) != 1 || int32At(a.value, pos + 12) != 1)
+      throw FileError(file, "not a cloudlut LUT (channel " + channel + " is subsampled)");
+    pos += kEntryFields;
+  }
+}
+
+void checkCompression(const std::string& file, const HeaderAttribute& a) {
+  if (static_cast<unsigned char>(a.value[0]) >= Imf::NUM_COMPRESSION_METHODS)
+    corruptHeader(file, "unknown compression " + std::to_string(static_cast<unsigned char>(a.value[0])));
+}
+
+void checkLineOrder(const std::string& file, const HeaderAttribute& a) {
+  if (static_cast<unsigned char>(a.value[0]) >= Imf::NUM_LINEORDERS)
+    corruptHeader(file, "unknown line order " + std::to_string(static_cast<unsigned char>(a.value[0])));
+}
+
+// OpenEXR reads a string attribute as exactly its declared size; only its length is bounded.
+void checkString(const std::string& file, const HeaderAttribute& a) {
+  const std::size_t limit = a.name == "cloudlut" ? kMaxDescriptionBytes : kMaxStringBytes;
+  if (a.value.size() > limit)
+    corruptHeader(file, "string \"" + a.name + "\" of " + std::to_string(a.value.size()) + " bytes, more than " +
+                            std::to_string(limit));
+}
+
+// What each accepted attribute type must be: its exact size (-1: any size) and a content check.
+struct AttributeRule {
+  const char* type;
+  int size;
+  void (*check)(const std::string& file, const HeaderAttribute& a);
+};
+constexpr AttributeRule kAttributeRules[] = {
+    // The types a cloudlut LUT's header has (ImfHeader's standard attributes, plus ours).
+    {"chlist", -1, checkChannelList},
+    {"box2i", 16, checkWindow},
+    {"compression", 1, checkCompression},
+    {"lineOrder", 1, checkLineOrder},
+    {"int", 4, nullptr},
+    {"float", 4, nullptr},
+    {"v2f", 8, nullptr},
+    {"string", -1, checkString},
+    // Fixed-size types other tools add when they re-save an image (chromaticities, say):
+    // OpenEXR reads exactly this many bytes of each.
+    {"double", 8, nullptr},
+    {"v2i", 8, nullptr},
+    {"v2d", 16, nullptr},
+    {"v3i", 12, nullptr},
+    {"v3f", 12, nullptr},
+    {"v3d", 24, nullptr},
+    {"box2f", 16, nullptr},
+    {"m33f", 36, nullptr},
+    {"m33d", 72, nullptr},
+    {"m44f", 64, nullptr},
+    {"m44d", 128, nullptr},
+    {"chromaticities", 32, nullptr},
+    {"rational", 8, nullptr},
+    {"timecode", 8, nullptr},
+    {"keycode", 28, nullptr},
+    {"envmap", 1, nullptr},
+};
+
+// Checks one attribute against its type's rule. A type OpenEXR knows but the table does not
+// list (preview, stringvector, floatvector, idmanifest, tiledesc, ...) is parsed by OpenEXR from
+// its content, which is not checked here, and no LUT needs one: it is rejected.
+void checkAttribute(const std::string& file, const HeaderAttribute& a) {
+  for (const AttributeRule& rule : kAttributeRules) {
+    if (a.type != rule.type) continue;
+    if (rule.size >= 0 && a.value.size() != static_cast<std::size_t>(rule.size))
+      corruptHeader(file, "attribute \"" + a.name + "\" of type " + a.type + " has " + std::to_string(a.value.size()) +
+                              " bytes, not " + std::to_string(rule.size));
+    if (rule.check != nullptr) rule.check(file, a);
+    return;
+  }
+  if (Imf::Attribute::knownType(a.type.c_str()))
+    throw FileError(file, "not a cloudlut LUT (EXR attribute \"" + a.name + "\" of type " + a.type + ")");
+}
+
+// Checks the magic number and version word of a single-part scanline EXR, then walks its
+// attribute list (name\0 type\0 int32 size, value; an empty name ends it): every declared size
+// must fit in the bytes left, and every value must pass checkAttribute. After this, OpenEXR's
+// header parser reads the same attributes in the same places, and allocates nothing larger
+// than the file, the atlas limits or the string limits allow.
+void checkHeaderBeforeDecoding(const std::string& file, const std::string& bytes) {
+  if (bytes.size() < 8) throw FileError(file, "not a readable EXR file (too short)");
+  if (int32At(bytes, 0) != 20000630) throw FileError(file, "not a readable EXR file (no EXR magic number)");
+  const auto version = static_cast<std::uint32_t>(int32At(bytes, 4));
+  if ((version & 0xffu) != 2)
+    throw FileError(file, "not a readable EXR file (EXR version " + std::to_string(version & 0xffu) + ")");
+  // Flags: 0x200 tiled, 0x800 deep, 0x1000 multi-part; 0x400 (long names) is harmless.
+  if ((version & ~0x4ffu) != 0) throw FileError(file, "not a cloudlut LUT (tiled, deep or multi-part EXR)");
+  Imf::staticInitialize();  // registers the attribute types Imf::Attribute::knownType knows
   std::size_t pos = 8;
-  auto readString = [&](const char* what) {
+  auto readName = [&](const char* what) {
     const std::size_t end = bytes.find('\0', pos);
-    if (end == std::string::npos || end - pos > 255)
-      throw FileError(name, std::string("not a readable EXR file (corrupt header: attribute ") + what + ")");
+    if (end == std::string::npos || end - pos > kMaxNameBytes) corruptHeader(file, std::string("attribute ") + what);
     std::string text = bytes.substr(pos, end - pos);
     pos = end + 1;
     return text;
   };
   for (int attributes = 0; attributes < 10000; ++attributes) {
-    if (readString("name").empty()) return;
-    readString("type");
-    if (bytes.size() - pos < 4) throw FileError(name, "not a readable EXR file (corrupt header: truncated)");
-    std::int32_t size = 0;
-    std::memcpy(&size, bytes.data() + pos, sizeof size);
+    HeaderAttribute a;
+    a.name = readName("name");
+    if (a.name.empty()) return;
+    a.type = readName("type");
+    if (bytes.size() - pos < 4) corruptHeader(file, "truncated");
+    const std::int32_t size = int32At(bytes, pos);
     pos += 4;
     if (size < 0 || static_cast<std::size_t>(size) > bytes.size() - pos)
-      throw FileError(name, "not a readable EXR file (corrupt header: an attribute claims " + std::to_string(size) +
-                                " bytes, " + std::to_string(bytes.size() - pos) + " remain)");
+      corruptHeader(file, "an attribute claims " + std::to_string(size) + " bytes, " +
+                              std::to_string(bytes.size() - pos) + " remain");
+    a.value = std::string_view(bytes).substr(pos, static_cast<std::size_t>(size));
+    checkAttribute(file, a);
     pos += static_cast<std::size_t>(size);
   }
-  throw FileError(name, "not a readable EXR file (corrupt header: too many attributes)");
-}
-
-void checkHeaderBeforeDecoding(const std::string& name, const std::string& bytes) {
-  checkAttributeSizes(name, bytes);
-  MemoryIStream probe(name, bytes);
-  char magicAndVersion[8];
-  probe.read(magicAndVersion, 8);
-  int version = 0;
-  std::memcpy(&version, magicAndVersion + 4, sizeof version);  // little-endian on every supported host
-  Imf::Header header;
-  header.readFrom(probe, version);
-  const Imath::Box2i w = header.dataWindow();
-  const long long width = static_cast<long long>(w.max.x) - w.min.x + 1;
-  const long long height = static_cast<long long>(w.max.y) - w.min.y + 1;
-  if (width < 1 || height < 1 || width > kMaxAtlasSide || height > kMaxAtlasSide || width * height > kMaxAtlasPixels)
-    throw FileError(name, "not a cloudlut LUT (EXR data window " + std::to_string(width) + "x" +
-                              std::to_string(height) + " is outside any LUT atlas)");
+  corruptHeader(file, "too many attributes");
 }
 
 // Decodes an EXR held in memory; OpenEXR's exceptions pass through to the caller.
