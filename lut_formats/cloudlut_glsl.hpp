@@ -9,18 +9,21 @@
 namespace cloudlut::glsl {
 using glm::abs;
 using glm::acos;
+using glm::asinh;
 using glm::atan;
 using glm::clamp;
 using glm::cos;
 using glm::cross;
 using glm::dot;
 using glm::exp;
+using glm::exp2;
 using glm::length;
 using glm::log2;
 using glm::max;
 using glm::min;
 using glm::normalize;
 using glm::sin;
+using glm::sinh;
 using glm::sqrt;
 using glm::vec2;
 using glm::vec3;

@@ -43,6 +43,10 @@ struct Axis {
   double max = 1.0;
   std::uint32_t size = 1;
   bool periodic = false;
+  // Node concentration about the middle (concentratedFraction in cloudlut_geometry.glsl):
+  // node i sits at the axis fraction i/(size-1), at the value
+  // min + (max - min) * concentratedFraction(i/(size-1), warp). 0 = uniform nodes.
+  float warp = 0.0f;
 };
 
 // A loaded table. Layout of `payload` and `values`: axis 0 fastest, then 1, 2, 3; channels
@@ -213,8 +217,8 @@ inline std::size_t checkPrefix(const std::uint8_t* p, std::size_t available,
     fail(name, "truncated: expected a header of at least 392 bytes, found " +
                    std::to_string(fileBytes));
   const std::uint32_t version = le32(p + 8);
-  if (version != 1)
-    fail(name, "unsupported format version " + std::to_string(version) + " (this build reads 1)");
+  if (version < 1 || version > 2)
+    fail(name, "unsupported format version " + std::to_string(version) + " (this build reads 1 to 2)");
   const std::uint32_t headerBytes = le32(p + 12);
   if (headerBytes < kMinHeaderBytes || headerBytes > kMaxHeaderBytes || headerBytes % 8 != 0)
     fail(name, "corrupt header (header size " + std::to_string(headerBytes) + ")");
@@ -230,6 +234,7 @@ inline void parseHeader(const std::uint8_t* p, std::size_t headerBytes, const st
                         Lut& lut, std::uint64_t& payloadBytes, std::uint64_t& payloadChecksum) {
   if (fnv1a64(p, headerBytes - 8) != le(p + headerBytes - 8, 8))
     fail(name, "header checksum mismatch");
+  const std::uint32_t version = le32(p + 8);
   for (std::size_t k = 0; k < 4; ++k) lut.dims[k] = le32(p + 16 + 4 * k);
   const std::uint32_t channels = le32(p + 32);
   const std::uint32_t type = le32(p + 36);
@@ -248,6 +253,10 @@ inline void parseHeader(const std::uint8_t* p, std::size_t headerBytes, const st
     axis.min = leF64(a + 24);
     axis.max = leF64(a + 32);
     axis.periodic = (le32(a + 40) & 1u) != 0;
+    const std::uint32_t warpBits = le32(a + 44);
+    std::memcpy(&axis.warp, &warpBits, sizeof axis.warp);
+    if (!(axis.warp >= 0.0f && axis.warp <= 20.0f) || (version < 2 && warpBits != 0))
+      fail(name, "corrupt header (axis node concentration)");
     axis.size = lut.dims[k];
     if (axis.size < 1) fail(name, "corrupt header (an axis has no nodes)");
   }
@@ -576,10 +585,10 @@ inline Manifest readManifest(const std::string& dir) {
   const Json* version = m.document.find("version");
   if (version == nullptr || version->type != Json::Type::Number)
     detail::fail(path, "manifest has no \"version\"");
-  if (version->number != 1.0)
+  if (version->number != 1.0 && version->number != 2.0)
     detail::fail(path, "unsupported manifest version " + std::to_string(version->number) +
-                           " (this reader reads 1)");
-  m.version = 1;
+                           " (this reader reads 1 to 2)");
+  m.version = static_cast<int>(version->number);
   if (const Json* g = m.document.find("generator"); g && g->type == Json::Type::String)
     m.generator = g->string;
   const Json* tables = m.document.find("tables");

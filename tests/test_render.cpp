@@ -146,9 +146,8 @@ TEST_CASE("render: one particle's pixels match core/TableLookup within 1%", "[re
         if (s.chordLength < 0.2f || s.opticalDepth < 0.05f) continue;
         const float single = firstPhase(l1, glm::dot(dir, sun)) *
                              lookupScattering(l1, h.S, h.v, l, p.density * s.meanDensity);
-        const float tauHomogeneous = glsl::particleOpticalDepth(p.density, unitOpticalRadius(od), s.chordLength, 1.0f);
-        const float multiple = lookupScattering(lm, h.S, h.v, l, p.density) *
-                               glsl::multipleScatteringShare(s.opticalDepth, tauHomogeneous);
+        // the mean source of the sphere of density ρ over the ray's own opacity (shading.glsl)
+        const float multiple = glsl::multipleScatteringFromTable(sampleScattering(lm, h.S, h.v, l, p.density), s.opticalDepth);
         const float ambient = glsl::ambientScale(s.transmittance, s.firstMatter);
         const float distance = h.tEnter + s.firstMatter * (h.tExit - h.tEnter);
         INFO("pixel " << x << "," << y << " tau " << s.opticalDepth);

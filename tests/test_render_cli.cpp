@@ -373,9 +373,11 @@ TEST_CASE("render CLI: pixels of one particle reproduce `cloudlut query` for the
 
   double maxRadiance = 0, maxTransmittance = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
-    // multiple scattering weighted by the ray's opacity over the homogeneous chord's (shading.glsl)
+    // `query` gives the homogeneous chord's multiple scattering; the renderer carries the
+    // same mean source over the ray's own opacity (shading.glsl)
     const float tauHomogeneous = glsl::particleOpticalDepth(p.density, static_cast<float>(sigma), rays[i].chord, 1.0f);
-    const double radiance = single[i] + multiple[i] * glsl::multipleScatteringShare(static_cast<float>(tau[i]), tauHomogeneous);
+    const double radiance = single[i] + multiple[i] * glsl::chordOpacity(static_cast<float>(tau[i])) /
+                                            glsl::chordOpacity(tauHomogeneous);
     maxRadiance = std::max(maxRadiance, std::abs(px[0][rays[i].pixel] - radiance) / radiance);
     maxTransmittance = std::max(maxTransmittance, std::abs(1.0 - px[1][rays[i].pixel] - transmittance[i]) / transmittance[i]);
   }

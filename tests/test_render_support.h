@@ -13,8 +13,10 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/OpticalDepthBaker.h"
+#include "core/Glsl.h"
 #include "core/ReferenceParticle.h"
 #include "core/Table4D.h"
+#include "core/TableLookup.h"
 #include "io/LutIo.h"
 #include "render/Scene.h"
 
@@ -22,21 +24,25 @@ namespace cloudlut::test {
 
 inline constexpr double kPi = 3.14159265358979323846;
 
-// A scattering table over (θS, φv, θv, log2 ρ ∈ [-4, 3]) filled with value(θS, φv, θv, s).
+// A scattering table over (θS, φv, θv, log2 ρ ∈ [-4, 3]) whose mean source is value(θS, φv,
+// θv, s), stored as the tables store it (cloudlut_shading.glsl), on a θS axis with
+// concentrated nodes (warp 3) so that the renderer's handling of the warp is exercised.
 // The values are consistent at the poles (θS = 0, π; θv = 0) and periodic in φv.
 template <typename F>
 Table4D syntheticScatteringTable(const std::string& name, const std::array<int, 4>& dims, F value) {
-  std::array<Axis, 4> axes = {Axis{"theta_s", "rad", 0.0, kPi, dims[0], false},
+  const bool single = name == "single_scattering";
+  std::array<Axis, 4> axes = {Axis{"theta_s", "rad", 0.0, kPi, dims[0], false, 3.0},
                               Axis{"phi_v", "rad", 0.0, 2.0 * kPi, dims[1], true},
                               Axis{"theta_v", "rad", 0.0, 0.5 * kPi, dims[2], false},
                               Axis{"log2_density", "log2", -4.0, 3.0, dims[3], false}};
-  Table4D t(name, axes, {Channel{"radiance", "synthetic radiance per unit sun irradiance"}});
+  Table4D t(name, axes, {Channel{single ? kSingleScatteringChannel : kMultipleScatteringChannel, "synthetic mean source"}});
   for (int i3 = 0; i3 < dims[3]; ++i3)
     for (int i2 = 0; i2 < dims[2]; ++i2)
       for (int i1 = 0; i1 < dims[1]; ++i1)
-        for (int i0 = 0; i0 < dims[0]; ++i0)
-          t.at(t.index(i0, i1, i2, i3), 0) = static_cast<float>(
-              value(axes[0].value(i0), axes[1].value(i1), axes[2].value(i2), axes[3].value(i3)));
+        for (int i0 = 0; i0 < dims[0]; ++i0) {
+          const float j = static_cast<float>(value(axes[0].value(i0), axes[1].value(i1), axes[2].value(i2), axes[3].value(i3)));
+          t.at(t.index(i0, i1, i2, i3), 0) = single ? glsl::singleScatteringToTable(j) : j;
+        }
   // built first, then moved in: clang 14 leaks the old value of `json& = {init-list}`
   nlohmann::json parameters = {{"extinction_per_m", 0.07}, {"radius_m", 183.8}, {"synthetic", true}};
   t.parameters() = std::move(parameters);

@@ -113,9 +113,26 @@ CLOUDLUT_FN float densityAxis(float rho, float sMin, float sMax) {
   return clamp((log2(max(rho, 1e-30f)) - sMin) / max(sMax - sMin, 1e-6f), 0.0f, 1.0f);
 }
 
-// Axis fractions of the scattering tables (θS/π, φv/2π, θv/(π/2), density axis).
-CLOUDLUT_FN vec4 scatteringAxes(vec3 S, vec3 v, vec3 l, float rho, float sMin, float sMax) {
+// Nodes concentrated about the middle of an axis: the fraction y ∈ [0, 1] of the physical
+// range at the axis fraction x ∈ [0, 1] is y = 1/2 + sinh(w (x − 1/2)) / (2 sinh(w/2)); w = 0 is
+// the uniform axis. The node spacing at the middle is w / (2 sinh(w/2)) times the uniform one
+// and w/2 · coth(w/2) times it at the ends. Dimensionless.
+CLOUDLUT_FN float concentratedFraction(float x, float w) {
+  if (w < 1e-4f) return x;
+  return 0.5f + sinh(w * (x - 0.5f)) / (2.0f * sinh(0.5f * w));
+}
+
+// Inverse of concentratedFraction: the axis fraction x of the physical fraction y ∈ [0, 1].
+CLOUDLUT_FN float concentratedAxis(float y, float w) {
+  if (w < 1e-4f) return clamp(y, 0.0f, 1.0f);
+  return clamp(0.5f + asinh((y - 0.5f) * 2.0f * sinh(0.5f * w)) / w, 0.0f, 1.0f);
+}
+
+// Axis fractions of the scattering tables: (θS axis, φv/2π, θv/(π/2), density axis). The θS
+// nodes concentrate about the terminator θS = π/2 (concentratedAxis(θS/π, warpS), warpS the
+// table's θS "warp"), where the light of a dense particle changes over an angle ≈ 1/σ.
+CLOUDLUT_FN vec4 scatteringAxes(vec3 S, vec3 v, vec3 l, float rho, float sMin, float sMax, float warpS) {
   vec3 a = scatteringAngles(S, v, l);
-  return vec4(a.x / CLOUDLUT_PI, a.y / (2.0f * CLOUDLUT_PI),
+  return vec4(concentratedAxis(a.x / CLOUDLUT_PI, warpS), a.y / (2.0f * CLOUDLUT_PI),
               min(a.z, 0.5f * CLOUDLUT_PI) / (0.5f * CLOUDLUT_PI), densityAxis(rho, sMin, sMax));
 }

@@ -8,6 +8,7 @@
 
 #include "bake/Quadrature.h"
 #include "core/Glsl.h"
+#include "core/TableLookup.h"
 
 namespace cloudlut::bake {
 
@@ -47,11 +48,13 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
                                    const EnergyInputs& in) {
   const Table4D* t = single ? single : multiple;
   if (!t) throw std::invalid_argument("energy balance: no scattering table given");
-  if (single && multiple && single->dims() != multiple->dims())
-    throw std::invalid_argument("energy balance: the single and multiple tables have different dimensions");
+  if (single && multiple && single->axes()[3].size != multiple->axes()[3].size)
+    throw std::invalid_argument("energy balance: the single and multiple tables have different density slices");
   for (const Table4D* x : {single, multiple})
-    if (x && x->channelCount() < 1) throw std::invalid_argument("energy balance: table without channels");
+    if (x) requireScatteringEncoding(*x);
   const Axis& dAx = t->axes()[3];
+  const float warp1 = single ? static_cast<float>(single->axes()[0].warp) : 0.0f;
+  const float warpM = multiple ? static_cast<float>(multiple->axes()[0].warp) : 0.0f;
   const int nSlices = dAx.size;
   // Quadrature: θS composite Gauss 8×8; α (angle between v and l) = π ξ², composite 12×8 in ξ;
   // β (azimuth of v about l) midpoints over [0, π], doubled by symmetry.
@@ -91,16 +94,17 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
                             static_cast<float>(ca));
           const float cosV = -glm::dot(v, S);
           if (!(cosV > 0.0f)) continue;
-          glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, 0.0f, 1.0f);
-          const std::array<float, 4> f{x.x, x.y, x.z, wFrac};
+          const float tau = static_cast<float>(sigma) * 2.0f * cosV;
           float val = 0.0f;
           if (single) {
-            single->sample(f, &val);
-            b1 += static_cast<double>(val) * cosV;
+            const glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, 0.0f, 1.0f, warp1);
+            single->sample({x.x, x.y, x.z, wFrac}, &val);
+            b1 += static_cast<double>(scatteringFromStored(*single, val, tau)) * cosV;
           }
           if (multiple) {
-            multiple->sample(f, &val);
-            bm += static_cast<double>(val) * cosV;
+            const glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, 0.0f, 1.0f, warpM);
+            multiple->sample({x.x, x.y, x.z, wFrac}, &val);
+            bm += static_cast<double>(scatteringFromStored(*multiple, val, tau)) * cosV;
           }
         }
         const double wb = kPi / nBeta * 2.0;

@@ -529,7 +529,9 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
   const double tIterate = seconds(t2);
   say(0.8);
 
-  // --- Gather to the table nodes: LM(S, v) = ∫ σ e^{−σt} ΣJ(S + t v, −v) dt.
+  // --- Gather to the table nodes: LM(S, v) = ∫ σ e^{−σt} ΣJ(S + t v, −v) dt, stored as its
+  // mean source LM / (1 − e^{−σ·chord}) (cloudlut_shading.glsl); on a grazing chord the mean
+  // source is the source at S.
   const auto t3 = std::chrono::steady_clock::now();
   const auto& ax = table.axes();
   const int nS = ax[0].size, nP = ax[1].size, nV = ax[2].size;
@@ -544,7 +546,14 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
       const double thV = ax[2].value(iV);
       const glm::dvec3 v = std::sin(thV) * (std::cos(phV) * fx + std::sin(phV) * fy) - std::cos(thV) * S;
       const double chord = std::max(0.0, -2.0 * glm::dot(S, v));
-      rayRule(sigma, chord, res.gatherPoints, ss, ww);
+      double opacity = -std::expm1(-sigma * chord);
+      if (opacity > 1e-9) {
+        rayRule(sigma, chord, res.gatherPoints, ss, ww);
+      } else {
+        ss.assign(1, 0.0);
+        ww.assign(1, 1.0);
+        opacity = 1.0;
+      }
       const glm::dvec3 w = -v;
       int ia;
       double fad;
@@ -579,7 +588,7 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
         }
         value += ww[k] * (corner[0] + fa * (corner[1] - corner[0]));
       }
-      dst.at(dst.index(iS, iP, iV, slice), 0) = static_cast<float>(std::max(0.0, value));
+      dst.at(dst.index(iS, iP, iV, slice), 0) = static_cast<float>(std::max(0.0, value / opacity));
     }
   });
   };

@@ -10,6 +10,8 @@
 #include "bake/MultipleScattering.h"
 #include "bake/ScatteringPaper.h"
 #include "bake/SingleScattering.h"
+#include "core/Glsl.h"
+#include "core/TableLookup.h"
 
 namespace cloudlut::bake {
 
@@ -45,7 +47,7 @@ nlohmann::json phaseJson(const PhaseSpec& p) {
 
 Table4D makeTable(const ScatteringSettings& s, const char* name, const char* channel, const char* meaning) {
   const auto& d = s.dims;
-  std::array<Axis, 4> axes{Axis{"theta_s", "rad", 0.0, kPi, d[0], false},
+  std::array<Axis, 4> axes{Axis{"theta_s", "rad", 0.0, kPi, d[0], false, sunZenithWarp(d[0])},
                            Axis{"phi_v", "rad", 0.0, 2.0 * kPi, d[1], true},
                            Axis{"theta_v", "rad", 0.0, 0.5 * kPi, d[2], false},
                            Axis{"log2_density", "log2", s.sMin, s.sMax, d[3], false}};
@@ -63,6 +65,21 @@ Table4D makeTable(const ScatteringSettings& s, const char* name, const char* cha
 }
 
 }  // namespace
+
+double sunZenithWarp(int nodes) {
+  constexpr double kMaxWarp = 7.0, kMaxPoleSpacing = 20.0 / 180.0 * kPi;
+  const double uniform = kPi / std::max(1, nodes - 1);
+  // pole spacing of warp w relative to uniform nodes: (w/2)·coth(w/2), increasing from 1 at w = 0
+  const auto poleFactor = [](double w) { return w < 1e-9 ? 1.0 : 0.5 * w / std::tanh(0.5 * w); };
+  if (poleFactor(kMaxWarp) * uniform <= kMaxPoleSpacing) return kMaxWarp;
+  if (uniform >= kMaxPoleSpacing) return 0.0;
+  double lo = 0.0, hi = kMaxWarp;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (poleFactor(mid) * uniform <= kMaxPoleSpacing ? lo : hi) = mid;
+  }
+  return std::round(lo * 1000.0) / 1000.0;  // a short number in the files
+}
 
 const char* toString(ScatteringMethod method) { return method == ScatteringMethod::Paper ? "paper" : "fast"; }
 
@@ -85,9 +102,9 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
   // is then baked even when not requested (it costs a few percent of the whole).
   const bool converged = settings.multiple && settings.orders <= 0 && settings.method == ScatteringMethod::Fast;
   if (settings.single || converged) {
-    Table4D t = makeTable(settings, "single_scattering", "radiance",
-                          "single-scattered radiance per unit sun irradiance WITHOUT the phase function "
-                          "(multiply by P1(v.l)), sr^-1 per sr^-1 of phase");
+    Table4D t = makeTable(settings, "single_scattering", kSingleScatteringChannel,
+                          "log2 of the mean sun transmittance along the chord: single-scattered radiance per unit "
+                          "sun irradiance WITHOUT the phase function = (1 - exp(-tau)) * 2^value (multiply by P1(v.l))");
     t.parameters()["orders"] = 1;
     t.parameters()["phase_included"] = false;
     if (settings.method == ScatteringMethod::Paper) {
@@ -104,10 +121,10 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
 
   const auto t1 = std::chrono::steady_clock::now();
   if (settings.multiple) {
-    Table4D t = makeTable(settings, "multiple_scattering", "radiance",
+    Table4D t = makeTable(settings, "multiple_scattering", kMultipleScatteringChannel,
                           settings.orders > 0
-                              ? "radiance of scattering orders 2..N leaving the sphere toward the camera, per unit sun irradiance, sr^-1"
-                              : "radiance of every scattering order from 2 on (converged) leaving the sphere toward the camera, per unit sun irradiance, sr^-1");
+                              ? "mean source of orders 2..N along the chord: their radiance toward the camera per unit sun irradiance = (1 - exp(-tau)) * value, sr^-1"
+                              : "mean source of every order from 2 on (converged) along the chord: radiance toward the camera per unit sun irradiance = (1 - exp(-tau)) * value, sr^-1");
     t.parameters()["orders"] = settings.orders > 0 ? nlohmann::json(settings.orders) : nlohmann::json("converged");
     t.parameters()["first_order"] = 2;
     t.parameters()["phase_included"] = true;
@@ -116,7 +133,7 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
       const FastResolution res;
       FastMultipleScattering fast(settings, res);
       std::optional<Table4D> tail;
-      if (converged) tail = makeTable(settings, "multiple_scattering_tail", "radiance", "orders 19 and up");
+      if (converged) tail = makeTable(settings, "multiple_scattering_tail", kMultipleScatteringChannel, "orders 19 and up");
       report["resolution"] = {{"radial", res.radial}, {"zenith", res.zenith}, {"dir_theta", res.dirTheta},
                               {"dir_phi", res.dirPhi}, {"fine_theta", res.fineTheta}, {"fine_phi", res.finePhi},
                               {"transport_points", res.transportPoints}, {"gather_points", res.gatherPoints}};
@@ -150,7 +167,7 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
           for (int iV = 0; iV < settings.dims[2]; ++iV)
             for (int iP = 0; iP < settings.dims[1]; ++iP)
               for (int iS = 0; iS < settings.dims[0]; ++iS) {
-                const std::size_t n = t.index(iS, iP, iV, k);
+                const std::size_t n = t.index(iS, iP, iV, k);  // mean sources add
                 t.at(n, 0) += static_cast<float>(scale) * tail->at(n, 0);
               }
           slices[k]["tail_share_before_closure"] = have;

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/Quadrature.h"
+#include "bake/SingleScattering.h"
 #include "core/Glsl.h"
 
 namespace cloudlut::bake {
@@ -151,12 +152,22 @@ void bakePaperMultipleScattering(const ScatteringSettings& settings, Table4D& ta
       reportProgress(progress, "multiple scattering (paper)",
                      progressBase + progressSpan * (k + static_cast<double>(n - 1) / orders) / nRho);
     }
-    // Copy r = 1, θv ≤ π/2 to the output.
+    // Output: r = 1, θv ≤ π/2, interpolated from the seed's uniform θS nodes to the table's
+    // (which concentrate about the terminator), stored as the mean source L / (1 − e^{−σc})
+    // (cloudlut_shading.glsl). A grazing node (c = 0) takes the mean source of its neighbour,
+    // the limit this fixed-step baseline can give.
     const auto& ax = table.axes();
     for (int iS = 0; iS < ax[0].size; ++iS)
-      for (int iP = 0; iP < ax[1].size; ++iP)
-        for (int iV = 0; iV < ax[2].size; ++iV)
-          table.at(table.index(iS, iP, iV, k), 0) = std::max(0.0f, sum[vol.index(iS, iP, iV, vol.nR - 1)]);
+      for (int iP = 0; iP < ax[1].size; ++iP) {
+        float meanSource = 0.0f;
+        for (int iV = 0; iV < ax[2].size; ++iV) {
+          const ScatteringNode n = scatteringNode(ax[0].value(iS), ax[1].value(iP), ax[2].value(iV));
+          const double opacity = -std::expm1(-sigma * std::max(0.0, -2.0 * glm::dot(n.S, n.v)));
+          if (opacity > 1e-9)
+            meanSource = static_cast<float>(std::max(0.0f, sampleVolume(vol, sum, n.S, n.v)) / opacity);
+          table.at(table.index(iS, iP, iV, k), 0) = meanSource;
+        }
+      }
     slices.push_back({{"sigma", sigma},
                       {"orders", orders},
                       {"volume", {vol.nS, vol.nP, vol.nV, vol.nR}},

@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/Quadrature.h"
+#include "core/Glsl.h"
 
 namespace cloudlut::bake {
 
@@ -14,6 +15,13 @@ double singleScatteringL1(const glm::dvec3& S, const glm::dvec3& v, const glm::d
   const double chord = -2.0 * glm::dot(S, v);
   if (!(chord > 0.0)) return 0.0;
   return sunlitRayIntegral(S, v, l, sigma, chord);
+}
+
+double singleScatteringMeanSource(const glm::dvec3& S, const glm::dvec3& v, const glm::dvec3& l, double sigma) {
+  const double chord = std::max(0.0, -2.0 * glm::dot(S, v));
+  const double opacity = -std::expm1(-sigma * chord);
+  if (opacity < 1e-9) return std::exp(-sigma * sunPath(S, l));
+  return std::clamp(sunlitRayIntegral(S, v, l, sigma, chord) / opacity, 0.0, 1.0);
 }
 
 ScatteringNode scatteringNode(double thetaS, double phiV, double thetaV) {
@@ -30,7 +38,8 @@ void bakeSingleScatteringSlice(double sigma, int slice, Table4D& table) {
     const int iS = row % nS, iP = row / nS;
     for (int iV = 0; iV < nV; ++iV) {
       const ScatteringNode n = scatteringNode(ax[0].value(iS), ax[1].value(iP), ax[2].value(iV));
-      table.at(table.index(iS, iP, iV, slice), 0) = static_cast<float>(singleScatteringL1(n.S, n.v, n.l, sigma));
+      const double meanSource = singleScatteringMeanSource(n.S, n.v, n.l, sigma);
+      table.at(table.index(iS, iP, iV, slice), 0) = glsl::singleScatteringToTable(static_cast<float>(meanSource));
     }
   });
 }

@@ -288,7 +288,7 @@ int runBake(int argc, char** argv) {
 
   nlohmann::json manifest;
   manifest["format"] = "cloudlut-lut-set";
-  manifest["version"] = 1;
+  manifest["version"] = io::kFormatVersion;
   manifest["generator"] = std::string("cloudlut ") + CLOUDLUT_VERSION;
   manifest["parameters"] = {{"extinction_per_m", plan.od.extinction}, {"radius_m", plan.od.radius},
                             {"density_model", toString(plan.model)}, {"seed", plan.seed}};

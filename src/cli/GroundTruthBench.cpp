@@ -94,7 +94,7 @@ bool ensureLutSet(const fs::path& dir, const MediumSpec& medium, bool quick, std
       entry["files"] = {{"bin", file}};
       entries[t->name()] = entry;
     }
-    io::writeManifest(dir, {{"format", "cloudlut-lut-set"}, {"version", 1}, {"generator", "cloudlut bench ground-truth"},
+    io::writeManifest(dir, {{"format", "cloudlut-lut-set"}, {"version", io::kFormatVersion}, {"generator", "cloudlut bench ground-truth"},
                             {"tables", entries}});
     return true;
   } catch (const std::exception& e) {

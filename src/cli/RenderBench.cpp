@@ -10,8 +10,11 @@
 #include <vector>
 
 #include "bake/OpticalDepthBaker.h"
+#include "bake/ScatteringBaker.h"
 #include "cli/BenchSuites.h"
+#include "core/Glsl.h"
 #include "core/ReferenceParticle.h"
+#include "core/TableLookup.h"
 #include "render/Cloudscape.h"
 #include "render/GlContext.h"
 #include "render/Renderer.h"
@@ -25,11 +28,11 @@ constexpr double kPi = 3.14159265358979323846;
 // the baked scattering tables may not exist yet when the suite runs).
 Table4D syntheticScattering(const std::string& name, bool single) {
   const std::array<int, 4> dims = {16, 24, 8, 8};
-  std::array<Axis, 4> axes = {Axis{"theta_s", "rad", 0.0, kPi, dims[0], false},
+  std::array<Axis, 4> axes = {Axis{"theta_s", "rad", 0.0, kPi, dims[0], false, bake::sunZenithWarp(dims[0])},
                               Axis{"phi_v", "rad", 0.0, 2.0 * kPi, dims[1], true},
                               Axis{"theta_v", "rad", 0.0, 0.5 * kPi, dims[2], false},
                               Axis{"log2_density", "log2", -4.0, 3.0, dims[3], false}};
-  Table4D t(name, axes, {Channel{"radiance", "synthetic"}});
+  Table4D t(name, axes, {Channel{single ? kSingleScatteringChannel : kMultipleScatteringChannel, "synthetic"}});
   for (int i3 = 0; i3 < dims[3]; ++i3)
     for (int i2 = 0; i2 < dims[2]; ++i2)
       for (int i1 = 0; i1 < dims[1]; ++i1)
@@ -37,7 +40,7 @@ Table4D syntheticScattering(const std::string& name, bool single) {
           const double ts = axes[0].value(i0), tv = axes[2].value(i2), s = axes[3].value(i3);
           const double v = single ? 0.05 * std::exp2(0.25 * s) * (1.0 + 0.4 * std::cos(ts)) * (0.6 + 0.4 * std::cos(tv))
                                   : 0.08 * (1.0 + 0.5 * std::tanh(0.5 * s)) * (1.0 + 0.5 * std::cos(ts));
-          t.at(t.index(i0, i1, i2, i3), 0) = static_cast<float>(v);
+          t.at(t.index(i0, i1, i2, i3), 0) = single ? glsl::singleScatteringToTable(static_cast<float>(v)) : static_cast<float>(v);
         }
   // built first, then moved in: clang 14 leaks the old value of `json& = {init-list}`
   nlohmann::json parameters = {{"extinction_per_m", 0.07}, {"radius_m", 183.8}, {"synthetic", true}};

@@ -1,5 +1,6 @@
 #include "core/Table4D.h"
 #include "core/Errors.h"
+#include "core/Glsl.h"
 
 #include <unistd.h>
 
@@ -8,6 +9,13 @@
 #include <stdexcept>
 
 namespace cloudlut {
+
+double Axis::value(int i) const {
+  if (size <= 1) return min;
+  const double x = static_cast<double>(i) / (size - 1);
+  const double y = warp > 0.0 ? glsl::concentratedFraction(static_cast<float>(x), static_cast<float>(warp)) : x;
+  return min + (max - min) * y;
+}
 
 Table4D::Table4D(std::string name, std::array<Axis, 4> axes, std::vector<Channel> channels)
     : name_(std::move(name)), axes_(std::move(axes)), channels_(std::move(channels)) {

@@ -24,7 +24,11 @@ struct Axis {
   double max = 1.0;     // value at node size-1
   int size = 1;         // number of nodes, >= 2 for an interpolated axis
   bool periodic = false;
-  double value(int i) const { return size > 1 ? min + (max - min) * i / (size - 1) : min; }
+  // Concentration of the nodes about the middle of the axis (concentratedFraction in
+  // cloudlut_geometry.glsl); 0 = uniformly spaced nodes.
+  double warp = 0.0;
+  // The physical value at node i: min + (max − min) · concentratedFraction(i / (size − 1), warp).
+  double value(int i) const;
 };
 
 struct Channel {

@@ -1,6 +1,8 @@
 #include "core/TableLookup.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "core/Defaults.h"
 #include "core/Glsl.h"
@@ -28,13 +30,35 @@ OpticalDepthSample lookupOpticalDepth(const Table4D& table, const glm::vec3& S,
   return s;
 }
 
-float lookupScattering(const Table4D& table, const glm::vec3& S, const glm::vec3& v,
+void requireScatteringEncoding(const Table4D& table) {
+  const std::string channel = table.channelCount() ? table.channels()[0].name : std::string();
+  if (channel != kSingleScatteringChannel && channel != kMultipleScatteringChannel)
+    throw std::runtime_error("table '" + table.name() + "' is not a scattering table of this cloudlut version (channel '" +
+                             channel + "', expected '" + kSingleScatteringChannel + "' or '" +
+                             kMultipleScatteringChannel + "'): re-bake it");
+}
+
+float sampleScattering(const Table4D& table, const glm::vec3& S, const glm::vec3& v,
                        const glm::vec3& l, float rho) {
+  requireScatteringEncoding(table);
   const Axis& d = table.axes()[3];
-  const glm::vec4 x = glsl::scatteringAxes(S, v, l, rho, static_cast<float>(d.min), static_cast<float>(d.max));
+  const glm::vec4 x = glsl::scatteringAxes(S, v, l, rho, static_cast<float>(d.min), static_cast<float>(d.max),
+                                           static_cast<float>(table.axes()[0].warp));
   float value = 0.0f;
   table.sample({x.x, x.y, x.z, x.w}, &value);
   return value;
+}
+
+float scatteringFromStored(const Table4D& table, float stored, float tau) {
+  return table.channels()[0].name == kSingleScatteringChannel ? glsl::singleScatteringFromTable(stored, tau)
+                                                              : glsl::multipleScatteringFromTable(stored, tau);
+}
+
+float lookupScattering(const Table4D& table, const glm::vec3& S, const glm::vec3& v,
+                       const glm::vec3& l, float rho) {
+  const float stored = sampleScattering(table, S, v, l, rho);
+  const float tau = unitOpticalRadius(table) * rho * glsl::chordLength(glm::normalize(S), v);
+  return scatteringFromStored(table, stored, tau);
 }
 
 }  // namespace cloudlut

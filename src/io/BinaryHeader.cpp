@@ -68,7 +68,7 @@ std::string encodeHeader(const Table4D& table, SampleType type, std::uint64_t pa
     putF64(h, a.min);
     putF64(h, a.max);
     putU32(h, a.periodic ? kAxisPeriodic : 0u);
-    putU32(h, 0);  // reserved
+    putU32(h, std::bit_cast<std::uint32_t>(static_cast<float>(a.warp)));
   }
   for (std::size_t c = 0; c < kMaxChannels; ++c)
     putFixedString(h, c < channels.size() ? channels[c].name : std::string(), kChannelNameBytes);
@@ -116,6 +116,9 @@ Header parseHeader(std::string_view bytes, const std::filesystem::path& path) {
     r.min = getF64(a + 24);
     r.max = getF64(a + 32);
     r.flags = getU32(a + 40);
+    r.warp = std::bit_cast<float>(getU32(a + 44));
+    if (!(r.warp >= 0.0f && r.warp <= kMaxAxisWarp) || (h.version < 2 && r.warp != 0.0f))
+      fail("corrupt header (axis " + std::to_string(k) + " node concentration)");
     if (h.dims[k] < 1) fail("corrupt header (axis " + std::to_string(k) + " has no nodes)");
   }
   for (std::size_t c = 0; c < h.channelCount; ++c) {

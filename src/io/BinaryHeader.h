@@ -13,13 +13,16 @@
 namespace cloudlut::io::binary {
 
 inline constexpr char kMagic[8] = {'C', 'L', 'O', 'U', 'D', 'L', 'U', 'T'};
-inline constexpr std::uint32_t kVersion = 1;
+// Version 2 stores each axis's node concentration (Axis::warp) as a float32 in the axis
+// record's last 4 bytes (zero, "reserved", in version 1, which is still read).
+inline constexpr std::uint32_t kVersion = kFormatVersion;
+inline constexpr std::uint32_t kOldestVersion = kOldestFormatVersion;
 
 // Field sizes and offsets, in bytes from the start of the file.
 inline constexpr std::size_t kTableNameBytes = 32;
 inline constexpr std::size_t kAxisNameBytes = 16;
 inline constexpr std::size_t kAxisUnitBytes = 8;
-inline constexpr std::size_t kAxisRecordBytes = 48;  // name, unit, min, max, flags, reserved
+inline constexpr std::size_t kAxisRecordBytes = 48;  // name, unit, min, max, flags, warp
 inline constexpr std::size_t kChannelNameBytes = 24;
 inline constexpr std::size_t kMaxChannels = 4;
 inline constexpr std::size_t kPrefixBytes = 16;       // magic, version, header size
@@ -30,6 +33,7 @@ inline constexpr std::size_t kJsonOffset = 380;
 inline constexpr std::size_t kMinHeaderBytes = 392;   // no JSON: 380 → padded 384, + checksum
 inline constexpr std::size_t kMaxJsonBytes = 16u << 20;  // sanity bound for readers
 inline constexpr std::uint32_t kAxisPeriodic = 1u;
+inline constexpr float kMaxAxisWarp = 20.0f;  // readers reject larger node concentrations
 
 // The header size for a JSON text of `jsonBytes` bytes: 380 + JSON, padded with zero bytes
 // to a multiple of 8, plus the 8-byte header checksum.
@@ -39,6 +43,7 @@ struct AxisRecord {
   std::string name, unit;
   double min = 0.0, max = 1.0;
   std::uint32_t flags = 0;
+  float warp = 0.0f;
 };
 
 // The decoded header fields.

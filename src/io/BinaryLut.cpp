@@ -65,9 +65,10 @@ LoadedTable readBinaryLut(const std::filesystem::path& path) {
     throw FileError(name, "not a cloudlut LUT (bad magic)");
   std::uint32_t version = 0, headerBytes = 0;
   binary::parsePrefix(prefix, version, headerBytes);
-  if (version != binary::kVersion)
+  if (version < binary::kOldestVersion || version > binary::kVersion)
     throw FileError(name, "unsupported format version " + std::to_string(version) +
-                              " (this build reads " + std::to_string(binary::kVersion) + ")");
+                              " (this build reads " + std::to_string(binary::kOldestVersion) + " to " +
+                              std::to_string(binary::kVersion) + ")");
   if (headerBytes < binary::kMinHeaderBytes ||
       headerBytes > binary::headerBytesFor(binary::kMaxJsonBytes) || headerBytes % 8 != 0)
     throw FileError(name, "corrupt header (header size " + std::to_string(headerBytes) + ")");
@@ -96,7 +97,7 @@ LoadedTable readBinaryLut(const std::filesystem::path& path) {
   for (int k = 0; k < 4; ++k) {
     const binary::AxisRecord& r = h.axes[k];
     axes[k] = Axis{r.name, r.unit, r.min, r.max, static_cast<int>(h.dims[k]),
-                   (r.flags & binary::kAxisPeriodic) != 0};
+                   (r.flags & binary::kAxisPeriodic) != 0, static_cast<double>(r.warp)};
   }
   std::vector<Channel> channels;
   for (const std::string& c : h.channelNames) channels.push_back({c, ""});

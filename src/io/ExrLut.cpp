@@ -31,7 +31,6 @@ namespace cloudlut::io {
 
 namespace {
 
-constexpr int kExrFormatVersion = 1;
 constexpr const char* kChannelNames[4] = {"R", "G", "B", "A"};
 constexpr int kMaxChannels = static_cast<int>(std::size(kChannelNames));
 
@@ -110,7 +109,7 @@ void writeExrLut(const Table4D& table, SampleType type, const std::filesystem::p
   for (int c = 0; c < table.channelCount(); ++c)
     header.channels().insert(kChannelNames[c], Imf::Channel(pixelType));
   header.insert("cloudlut", Imf::StringAttribute(description.dump()));
-  header.insert("cloudlutVersion", Imf::IntAttribute(kExrFormatVersion));
+  header.insert("cloudlutVersion", Imf::IntAttribute(kFormatVersion));
 
   MemoryOStream os(path.string());
   try {
@@ -322,9 +321,9 @@ LoadedTable decodeExr(const std::filesystem::path& path, const std::string& byte
   const auto* version = header.findTypedAttribute<Imf::IntAttribute>("cloudlutVersion");
   if (attribute == nullptr || version == nullptr)
     throw FileError(name, "not a cloudlut LUT (EXR without the \"cloudlut\" attributes)");
-  if (version->value() != kExrFormatVersion)
-    throw FileError(name, "unsupported format version " + std::to_string(version->value()) +
-                              " (this build reads " + std::to_string(kExrFormatVersion) + ")");
+  if (version->value() < kOldestFormatVersion || version->value() > kFormatVersion)
+    throw FileError(name, "unsupported format version " + std::to_string(version->value()) + " (this build reads " +
+                              std::to_string(kOldestFormatVersion) + " to " + std::to_string(kFormatVersion) + ")");
   const nlohmann::json description = nlohmann::json::parse(attribute->value(), nullptr, false);
   if (description.is_discarded() || !description.is_object())
     throw FileError(name, "corrupt \"cloudlut\" attribute (not a JSON object)");

@@ -18,6 +18,12 @@
 
 namespace cloudlut::io {
 
+// Version of the LUT formats (binary header, EXR "cloudlutVersion", manifest "version").
+// 2 adds each axis's node concentration ("warp") and the scattering tables' log2 mean-source
+// encoding; version 1 files are still read (their axes are uniform).
+inline constexpr int kFormatVersion = 2;
+inline constexpr int kOldestFormatVersion = 1;
+
 // How the samples are stored: 8-bit unsigned normalised ([0, 1] → 0…255, round to nearest),
 // IEEE half, or IEEE float.
 enum class SampleType { U8 = 0, Half = 1, Float = 2 };

@@ -12,7 +12,6 @@ namespace {
 
 constexpr const char* kManifestName = "manifest.json";
 constexpr const char* kManifestFormat = "cloudlut-lut-set";
-constexpr int kManifestVersion = 1;
 
 // "AxBxCxD".
 std::string dimsText(const std::array<int, 4>& d) {
@@ -34,11 +33,11 @@ nlohmann::json readManifestDocument(const std::filesystem::path& path) {
                                        kManifestFormat + "\")");
   if (!m.contains("version") || !m["version"].is_number_integer())
     throw FileError(path.string(), "manifest has no integer \"version\"");
-  if (m["version"].get<long long>() != kManifestVersion)
+  if (m["version"].get<long long>() < kOldestFormatVersion || m["version"].get<long long>() > kFormatVersion)
     throw FileError(path.string(), "unsupported manifest version " +
                                        std::to_string(m["version"].get<long long>()) +
-                                       " (this build reads " + std::to_string(kManifestVersion) +
-                                       ")");
+                                       " (this build reads " + std::to_string(kOldestFormatVersion) + " to " +
+                                       std::to_string(kFormatVersion) + ")");
   if (!m.contains("tables") || !m["tables"].is_object())
     throw FileError(path.string(), "manifest has no \"tables\" object");
   return m;

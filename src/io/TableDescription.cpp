@@ -40,7 +40,7 @@ nlohmann::json describeTableWith(const Table4D& table, SampleType type, std::uin
   json axes = json::array();
   for (const Axis& a : table.axes())
     axes.push_back({{"name", a.name}, {"unit", a.unit}, {"min", a.min}, {"max", a.max},
-                    {"size", a.size}, {"periodic", a.periodic}});
+                    {"size", a.size}, {"periodic", a.periodic}, {"warp", a.warp}});
   json channels = json::array();
   for (const Channel& c : table.channels())
     channels.push_back({{"name", c.name}, {"meaning", c.meaning}});
@@ -110,6 +110,12 @@ Table4D tableFromDescription(const nlohmann::json& description, const std::files
     axes[k].min = required<double>(a, "min", path);
     axes[k].max = required<double>(a, "max", path);
     axes[k].periodic = required<bool>(a, "periodic", path);
+    // "warp" (node concentration, cloudlut_geometry.glsl) is absent from older files: uniform.
+    if (a.contains("warp")) {
+      axes[k].warp = required<double>(a, "warp", path);
+      if (!(axes[k].warp >= 0.0 && axes[k].warp <= 20.0))
+        throw FileError(path.string(), "axis " + std::to_string(k) + " has a bad node concentration");
+    }
     const auto size = required<std::int64_t>(a, "size", path);
     if (size < 1 || size > 0x7fffffff)
       throw FileError(path.string(), "axis " + std::to_string(k) + " has " + std::to_string(size) +

@@ -44,7 +44,7 @@ static_assert(sizeof(GpuParticle) == 7 * 16, "GpuParticle must match particle_co
 struct TableTexture {
   GLuint texture = 0;
   glm::vec4 dims{0.0f};
-  glm::vec2 densityRange{0.0f};  // axis 3 of a scattering table: log2 ρ at its ends
+  glm::vec3 scatteringAxes{0.0f};  // scattering table: log2 ρ at the ends of axis 3, θS warp
 };
 
 const Table4D& requireTable(const io::LutSet& luts, const std::string& name) {
@@ -170,6 +170,16 @@ struct Renderer::Impl {
     const Table4D& od = requireTable(set, "optical_depth");
     const Table4D& l1 = requireTable(set, "single_scattering");
     const Table4D& lm = requireTable(set, "multiple_scattering");
+    for (const Table4D* t : {&l1, &lm}) {
+      try {
+        requireScatteringEncoding(*t);
+      } catch (const std::runtime_error& e) {
+        throw FileError(luts, e.what());
+      }
+    }
+    if (l1.channels()[0].name != kSingleScatteringChannel || lm.channels()[0].name != kMultipleScatteringChannel)
+      throw FileError(luts, std::string("single_scattering must store '") + kSingleScatteringChannel +
+                                "' and multiple_scattering '" + kMultipleScatteringChannel + "'");
     unitOpticalRadius = cloudlut::unitOpticalRadius(od);
     if (!(unitOpticalRadius > 0.0f) || !std::isfinite(unitOpticalRadius))
       throw FileError(luts, "optical_depth: extinction_per_m · radius_m is not a positive number");
@@ -240,8 +250,9 @@ struct Renderer::Impl {
     t.dims = glm::vec4(d[0], d[1], d[2], d[3]);
     if (scattering) {
       const Axis& a = table.axes()[3];
-      t.densityRange = glm::vec2(static_cast<float>(a.min), static_cast<float>(a.max));
-      if (!std::isfinite(t.densityRange.x) || !std::isfinite(t.densityRange.y))
+      t.scatteringAxes = glm::vec3(static_cast<float>(a.min), static_cast<float>(a.max),
+                                   static_cast<float>(table.axes()[0].warp));
+      if (!std::isfinite(t.scatteringAxes.x) || !std::isfinite(t.scatteringAxes.y))
         throw FileError(luts, table.name() + ": density axis range is not finite");
     }
     static const GLenum formats[4] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
@@ -624,8 +635,8 @@ struct Renderer::Impl {
     bindTable(0, "uOpticalDepth", "uOpticalDepthDims", opticalDepth);
     bindTable(1, "uSingle", "uSingleDims", single);
     bindTable(2, "uMultiple", "uMultipleDims", multiple);
-    gl.Uniform2f(uniform("uSingleDensityRange"), single.densityRange.x, single.densityRange.y);
-    gl.Uniform2f(uniform("uMultipleDensityRange"), multiple.densityRange.x, multiple.densityRange.y);
+    gl.Uniform3f(uniform("uSingleAxes"), single.scatteringAxes.x, single.scatteringAxes.y, single.scatteringAxes.z);
+    gl.Uniform3f(uniform("uMultipleAxes"), multiple.scatteringAxes.x, multiple.scatteringAxes.y, multiple.scatteringAxes.z);
     gl.Uniform1f(uniform("uUnitOpticalRadius"), unitOpticalRadius);
     gl.Uniform1i(uniform("uFirstPhaseKind"), firstPhaseKind);
     gl.Uniform1f(uniform("uFirstPhaseParam"), firstPhaseParam);

@@ -11,11 +11,12 @@
 //          the world does not enter: every particle is the reference particle of optical
 //          radius σ·ρ (to make a particle of radius r optically as thick as a reference
 //          particle of radius R would be, give it ρ·r/R);
-//   single = P1(cos θ) · L1(S, v, l, ρ·T̄), P1 the single table's "first_phase", cos θ the
-//          world-space scattering angle (dir · sun; equal to v·l unless the particle is
-//          non-uniformly scaled);
-//   multiple = LM(S, v, l, ρ) · multipleScatteringShare(τ, ρ·σ·L): the ray's opacity over the
-//          homogeneous chord's, so that the transparent fringe of a particle does not glow;
+//   single = P1(cos θ) · (1 − e^{−τ}) · J̄1(S, v, l, ρ·T̄): the mean source J̄1 (mean sun
+//          transmittance) of the homogeneous sphere of the ray's mean density, P1 the single
+//          table's "first_phase", cos θ the world-space scattering angle (dir · sun; equal to
+//          v·l unless the particle is non-uniformly scaled);
+//   multiple = (1 − e^{−τ}) · J̄M(S, v, l, ρ): the ray's own opacity, so that the transparent
+//          fringe of a particle does not glow (single/multipleScatteringFromTable decode the tables);
 //   ambient  = sky · ambientScale(e^{−τ}, d), d the distance to the first matter as a fraction
 //          of the chord (table channel 1): rays that meet matter at once take the full sky
 //          light, rays whose matter lies deep along the chord half of it;

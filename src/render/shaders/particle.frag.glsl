@@ -19,8 +19,8 @@ uniform sampler3D uMultiple;
 uniform vec4 uOpticalDepthDims;  // (N0, N1, N2, N3)
 uniform vec4 uSingleDims;
 uniform vec4 uMultipleDims;
-uniform vec2 uSingleDensityRange;    // log2 rho at the first and last node of axis 3
-uniform vec2 uMultipleDensityRange;
+uniform vec3 uSingleAxes;    // log2 rho at the first and last node of axis 3, theta_s warp
+uniform vec3 uMultipleAxes;
 uniform float uUnitOpticalRadius;    // sigma = extinction * radius of the optical-depth table
 uniform int uFirstPhaseKind;         // phaseFunction() kind and parameter of the single table
 uniform float uFirstPhaseParam;
@@ -74,19 +74,19 @@ void main() {
   float tau = particleOpticalDepth(rho, uUnitOpticalRadius, chord, od.x);
   float transmittance = exp(-tau);
 
-  // Single scattering: the homogeneous sphere of the ray's mean density, times the phase
-  // function of the physical (world-space) scattering angle. Multiple: the sphere of density rho.
+  // Single scattering: the mean source of the homogeneous sphere of the ray's mean density,
+  // times the phase function of the physical (world-space) scattering angle. Multiple: the
+  // mean source of the sphere of density rho. Both carry the ray's own opacity 1 − e^{−τ}.
   float single = 0.0;
   if ((uTerms & 1) != 0) {
-    vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleDensityRange.x, uSingleDensityRange.y);
+    vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleAxes.x, uSingleAxes.y, uSingleAxes.z);
     single = phaseFunction(uFirstPhaseKind, dot(dir, uSunDirection), uFirstPhaseParam) *
-             cloudlutSample4D(uSingle, x, uSingleDims).x;
+             singleScatteringFromTable(cloudlutSample4D(uSingle, x, uSingleDims).x, tau);
   }
   float multiple = 0.0;
   if ((uTerms & 2) != 0) {
-    vec4 x = scatteringAxes(S, v, l, rho, uMultipleDensityRange.x, uMultipleDensityRange.y);
-    multiple = cloudlutSample4D(uMultiple, x, uMultipleDims).x *
-               multipleScatteringShare(tau, particleOpticalDepth(rho, uUnitOpticalRadius, chord, 1.0));
+    vec4 x = scatteringAxes(S, v, l, rho, uMultipleAxes.x, uMultipleAxes.y, uMultipleAxes.z);
+    multiple = multipleScatteringFromTable(cloudlutSample4D(uMultiple, x, uMultipleDims).x, tau);
   }
   // Ambient: sky radiance, scaled by the opacity and by f(distance to the first matter).
   vec3 ambient = vec3(0.0);
