@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "bake/OpticalDepthBaker.h"
+#include "bake/PhaseResolution.h"
 #include "bake/ScatteringBaker.h"
 #include "cli/Command.h"
 #include "cli/Options.h"
@@ -140,6 +141,37 @@ void configureScattering(BakePlan& plan, const cxxopts::ParseResult& args) {
   sc.multiple = plan.tables.count("multiple") > 0;
 }
 
+// Phase function by name for messages: "cs g=0.7", "jd d=10 um", "iso".
+std::string describePhase(const bake::PhaseSpec& p) {
+  char buf[64];
+  if (p.kind == 1 || p.kind == 2) std::snprintf(buf, sizeof buf, "%s g=%g", p.kind == 1 ? "hg" : "cs", p.param);
+  else if (p.kind == 3) std::snprintf(buf, sizeof buf, "jd d=%g um", p.param);
+  else std::snprintf(buf, sizeof buf, "iso");
+  return buf;
+}
+
+// One warning line on stderr (printed even with --quiet: it is not progress) when a phase
+// function is too sharp for a direction grid the bake convolves it on: the expected relative
+// error in 1 − g (bake/PhaseResolution.h) and the resolution that would bring it under 1%.
+void warnPhaseResolution(const bake::ScatteringSettings& sc) {
+  constexpr double kTolerance = 0.01, kDeg = 180.0 / 3.14159265358979323846;
+  const auto checks = bake::checkPhaseResolution(sc, kTolerance);
+  if (checks.empty()) return;
+  std::string line = "cloudlut bake: warning: direction grid too coarse for the phase function:";
+  for (std::size_t i = 0; i < checks.size(); ++i) {
+    const auto& c = checks[i];
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "%s %s phase %s (g=%.3f; forward peak %.4g sr^-1, half-width %.2f deg) on %s (spacing %.2f deg): "
+                  "expected error %.1f%% in 1-g; spacing <= %.2f deg brings it under %.0f%% (%s)",
+                  i ? ";" : "", c.which.c_str(), describePhase(c.phase).c_str(), c.estimate.asymmetry,
+                  c.estimate.peakValue, c.estimate.peakHalfWidth * kDeg, c.grid.c_str(), c.spacing * kDeg,
+                  100.0 * c.estimate.relativeError, c.neededSpacing * kDeg, 100.0 * kTolerance, c.advice.c_str());
+    line += buf;
+  }
+  std::fprintf(stderr, "%s\n", line.c_str());
+}
+
 // What --for-scene skipped and saved against the default bake (64×32×64×32, 8 density slices).
 void printSceneReport(const BakePlan& plan, const SceneNeeds& needs, const nlohmann::json& forScene,
                       const nlohmann::json& timings) {
@@ -249,6 +281,8 @@ int runBake(int argc, char** argv) {
   if (scattering) checkTableFitsInMemory(plan.sc.dims, 1, 2);
   const auto threadLimit = limitThreads(plan.threads);
   prepareOutputDirectory(plan.out);
+
+  if (scattering) warnPhaseResolution(plan.sc);
 
   const ProgressFn progress = makeTtyProgress(plan.quiet);
   nlohmann::json entries = nlohmann::json::object();
