@@ -152,9 +152,10 @@ std::string describePhase(const bake::PhaseSpec& p) {
 
 // One warning line on stderr (printed even with --quiet: it is not progress) when a phase
 // function is too sharp for a direction grid the bake convolves it on: the expected relative
-// error in 1 − g (bake/PhaseResolution.h) and the resolution that would bring it under 1%.
+// error in 1 − g (bake/PhaseResolution.h) and the resolution that would bring it under the
+// tolerance (2%, see kPhaseResolutionTolerance).
 void warnPhaseResolution(const bake::ScatteringSettings& sc) {
-  constexpr double kTolerance = 0.01, kDeg = 180.0 / 3.14159265358979323846;
+  constexpr double kTolerance = bake::kPhaseResolutionTolerance, kDeg = 180.0 / 3.14159265358979323846;
   const auto checks = bake::checkPhaseResolution(sc, kTolerance);
   if (checks.empty()) return;
   std::string line = "cloudlut bake: warning: direction grid too coarse for the phase function:";
