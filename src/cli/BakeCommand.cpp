@@ -198,12 +198,19 @@ void printSceneReport(const BakePlan& plan, const SceneNeeds& needs, const nlohm
     const auto& d = plan.sc.dims;
     const int tables = int(plan.tables.count("single") + plan.tables.count("multiple"));
     bytes += tables * sampleBytes * double(d[0]) * d[1] * d[2] * d[3];
-    defaultBytes += tables * sampleBytes * double(d[0]) * d[1] * d[2] * 8;
+    defaultBytes += tables * sampleBytes * 32.0 * 64 * 16 * 8;
     const double t = timings.value("scattering_s", 0.0);
     seconds += t;
-    defaultSeconds += t * 8.0 / d[3];  // each density slice costs about the same
-    std::printf("  scattering: density slices log2 rho = %g..%g (%d of the default 8 spanning -4..3)\n", plan.sc.sMin,
-                plan.sc.sMax, d[3]);
+    defaultSeconds += t * 8.0 / d[3];  // each density slice costs about the same (the volume solve dominates)
+    std::printf("  scattering: density slices log2 rho = %g..%g, %d per octave (the default: -4..3, 1 per octave)\n",
+                plan.sc.sMin, plan.sc.sMax, forScene.value("scattering_slices_per_octave", 1));
+    if (forScene.contains("single_scattering_error_p95")) {
+      const double err = forScene.value("single_scattering_error_p95", 0.0), tol = forScene.value("tolerance", 0.0);
+      std::printf("  scattering: %dx%dx%dx%d (95th-percentile single-scattering error %.4f at the slices, %.4f between "
+                  "them; tolerance %.4f%s)\n",
+                  d[0], d[1], d[2], d[3], forScene.value("single_scattering_error_p95_at_slices", 0.0), err, tol,
+                  err > tol ? "; NOT met by the largest candidate" : "");
+    }
   }
   std::printf("  saved: %.1f of %.1f MB per format (%.0f%%), about %.1f of %.1f s (estimated from this bake's rates)\n",
               (defaultBytes - bytes) / 1e6, defaultBytes / 1e6, 100.0 * (defaultBytes - bytes) / defaultBytes,
@@ -224,9 +231,9 @@ int runBake(int argc, char** argv) {
     ("droplet-um", "droplet diameter in micrometres for jd (one phase for every order)", cxxopts::value<double>()->default_value("10"))
     ("orders", "highest scattering order in the multiple table, or 'converged' for all of them", cxxopts::value<std::string>()->default_value("18"))
     ("method", "scattering method: fast (ours) or paper (the seed's algorithm, slow)", cxxopts::value<std::string>()->default_value("fast"))
-    ("for-scene", "bake only what a scene needs (particle JSON, cloudscape preset or file): its density range, and the smallest optical-depth table within --tolerance; overrides --densities and --res-od", cxxopts::value<std::string>())
+    ("for-scene", "bake only what a scene needs (particle JSON, cloudscape preset or file): its density range, and the smallest optical-depth and scattering tables within --tolerance; overrides --densities, --res-od and --res-sc", cxxopts::value<std::string>())
     ("quality", "--for-scene with a cloudscape: grid preset low, medium or high", cxxopts::value<std::string>()->default_value("medium"))
-    ("tolerance", "--for-scene: largest 95th-percentile opacity error from the optical-depth table's interpolation", cxxopts::value<double>()->default_value("0.01"))
+    ("tolerance", "--for-scene: largest 95th-percentile interpolation error: absolute in opacity for the optical-depth table, relative in single scattering for the scattering tables", cxxopts::value<double>()->default_value("0.01"))
     ("density-model", "reference particle: noise, threshold, pyroclastic, radial, sphere", cxxopts::value<std::string>()->default_value("noise"))
     ("seed", "noise seed", cxxopts::value<std::uint64_t>()->default_value("1"))
     ("steps", "density samples per particle diameter along each chord (0 = the model's measured default)", cxxopts::value<int>()->default_value("0"))
@@ -309,6 +316,15 @@ int runBake(int argc, char** argv) {
     writeTable(plan, table, plan.precision, entries);
   }
   nlohmann::json scatteringReport;
+  if (scattering && needs) {
+    reportProgress(progress, "choosing the scattering resolution", 0.0);
+    const ScatteringChoice choice = chooseScatteringResolution(plan.sc, args["tolerance"].as<double>());
+    plan.sc.dims = choice.dims;
+    forScene["scattering_dims"] = plan.sc.dims;
+    forScene["scattering_slices_per_octave"] = choice.slicesPerOctave;
+    forScene["single_scattering_error_p95_at_slices"] = choice.angularErrorP95;
+    forScene["single_scattering_error_p95"] = choice.errorP95;
+  }
   if (scattering) {
     const auto t0 = std::chrono::steady_clock::now();
     bake::ScatteringResult result = bake::bakeScattering(plan.sc, progress);

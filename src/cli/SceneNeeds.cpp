@@ -7,9 +7,11 @@
 #include <random>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "bake/OpticalDepthBaker.h"
+#include "bake/SingleScattering.h"
 #include "core/Errors.h"
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
@@ -98,6 +100,72 @@ OpticalDepthChoice chooseOpticalDepthResolution(const ReferenceParticle& particl
     choice.dims = dims;
     choice.errorP95 = p95;
     if (p95 <= tolerance) break;
+  }
+  return choice;
+}
+
+ScatteringChoice chooseScatteringResolution(const bake::ScatteringSettings& settings, double tolerance) {
+  std::mt19937_64 rng(4343);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto unit = [&] {
+    const double z = 2.0 * u(rng) - 1.0, p = 6.283185307179586 * u(rng), r = std::sqrt(1.0 - z * z);
+    return glm::dvec3(r * std::cos(p), r * std::sin(p), z);
+  };
+  const int octaves = static_cast<int>(std::lround(settings.sMax - settings.sMin));
+  struct Ray { glm::dvec3 S, v, l; double rhoBetween, rhoSlice, exactBetween, exactSlice; };
+  std::vector<Ray> rays(1500);
+  double meanBetween = 0.0, meanSlice = 0.0;
+  const double sigma1 = settings.extinction * settings.radius;
+  for (Ray& r : rays) {
+    r.S = unit();
+    r.l = unit();
+    // v cosine-weighted about the inward normal: rays as a distant camera sees them
+    const glm::dvec3 n = -r.S, a = std::abs(n.x) < 0.7 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 t = glm::normalize(glm::cross(n, a)), b = glm::cross(n, t);
+    const double q = std::sqrt(u(rng)), p = 6.283185307179586 * u(rng);
+    r.v = glm::normalize(std::sqrt(1.0 - q * q) * n + q * (std::cos(p) * t + std::sin(p) * b));
+    const double s = settings.sMin + (settings.sMax - settings.sMin) * u(rng);
+    r.rhoBetween = std::exp2(s);
+    r.rhoSlice = std::exp2(std::round(s));
+    r.exactBetween = bake::singleScatteringL1(r.S, r.v, r.l, sigma1 * r.rhoBetween);
+    r.exactSlice = bake::singleScatteringL1(r.S, r.v, r.l, sigma1 * r.rhoSlice);
+    meanBetween += r.exactBetween / static_cast<double>(rays.size());
+    meanSlice += r.exactSlice / static_cast<double>(rays.size());
+  }
+  // 95th percentile of the relative error of a candidate, at the slice densities or between them.
+  const auto errorOf = [&](const std::array<int, 4>& dims, bool between) {
+    bake::ScatteringSettings s = settings;
+    s.dims = dims;
+    s.single = true;
+    s.multiple = false;
+    const bake::ScatteringResult r = bake::bakeScattering(s);
+    std::vector<double> errors;
+    for (const Ray& ray : rays) {
+      const double exact = between ? ray.exactBetween : ray.exactSlice;
+      if (exact < 0.01 * (between ? meanBetween : meanSlice)) continue;
+      const double table = lookupScattering(*r.single, glm::vec3(ray.S), glm::vec3(ray.v), glm::vec3(ray.l),
+                                            static_cast<float>(between ? ray.rhoBetween : ray.rhoSlice));
+      errors.push_back(std::abs(table - exact) / exact);
+    }
+    std::sort(errors.begin(), errors.end());
+    return errors.empty() ? 0.0 : errors[static_cast<std::size_t>(0.95 * static_cast<double>(errors.size() - 1))];
+  };
+  ScatteringChoice choice{};
+  const std::array<std::array<int, 3>, 5> ladder{{{16, 32, 8}, {24, 48, 12}, {32, 64, 16}, {48, 96, 24}, {64, 128, 32}}};
+  for (const auto& d : ladder) {
+    ++choice.candidatesTried;
+    choice.dims = {d[0], d[1], d[2], octaves + 1};
+    choice.angularErrorP95 = errorOf(choice.dims, false);
+    if (choice.angularErrorP95 <= tolerance) break;
+  }
+  for (const int perOctave : {1, 2, 4, 8}) {
+    const std::array<int, 4> dims{choice.dims[0], choice.dims[1], choice.dims[2], octaves * perOctave + 1};
+    if (perOctave > 1 && dims[2] * dims[3] > 2048) break;  // the folded depth of a GL 3D texture
+    ++choice.candidatesTried;
+    choice.dims = dims;
+    choice.slicesPerOctave = perOctave;
+    choice.errorP95 = errorOf(dims, true);
+    if (choice.errorP95 <= tolerance) break;
   }
   return choice;
 }
