@@ -5,7 +5,10 @@
 #include <cmath>
 #include <random>
 
+#include "bake/ScatteringBaker.h"
+#include "bake/SingleScattering.h"
 #include "core/Glsl.h"
+#include "core/Table4D.h"
 
 using namespace cloudlut::glsl;
 
@@ -117,6 +120,37 @@ TEST_CASE("texture coordinates hit texel centres at both ends of an axis", "[par
   CHECK(densityAxis(1.0f / 16.0f, -4.0f, 3.0f) == Approx(0.0f));
   CHECK(densityAxis(8.0f, -4.0f, 3.0f) == Approx(1.0f));
   CHECK(densityAxis(1.0f, -4.0f, 3.0f) == Approx(4.0f / 7.0f));
+}
+
+TEST_CASE("concentrated axes: the nodes, their inverse, and the theta_s concentration the baker picks", "[parameterization]") {
+  // y = 1/2 + sinh(w (x − 1/2)) / (2 sinh(w/2)) written out here, not through the shared GLSL
+  for (double w : {0.0, 3.0, 7.0, 12.0})
+    for (int i = 0; i <= 40; ++i) {
+      const double x = i / 40.0;
+      const double y = w > 0 ? 0.5 + std::sinh(w * (x - 0.5)) / (2.0 * std::sinh(0.5 * w)) : x;
+      CHECK(concentratedFraction(static_cast<float>(x), static_cast<float>(w)) == Approx(y).margin(2e-6));
+      CHECK(concentratedAxis(static_cast<float>(y), static_cast<float>(w)) == Approx(x).margin(2e-5));
+      cloudlut::Axis a{"theta_s", "rad", 0.0, kPi, 41, false, w};
+      CHECK(a.value(i) == Approx(kPi * y).margin(1e-5));
+    }
+  // The scattering axes put θS through the inverse: a table node's geometry lands on its node.
+  for (int n : {9, 16, 24, 32, 64}) {
+    const double w = cloudlut::bake::sunZenithWarp(n);
+    const double uniform = kPi / static_cast<double>(n - 1);
+    const double pole = w > 0 ? uniform * 0.5 * w / std::tanh(0.5 * w) : uniform;
+    INFO(n << " nodes: warp " << w << ", pole spacing " << pole * 180 / kPi << " deg");
+    CHECK(w <= 7.0);
+    CHECK((pole <= 21.0 / 180.0 * kPi + 1e-9 || w == 0.0));
+    if (n >= 32) CHECK(w == 7.0);
+    if (n <= 9) CHECK(w == 0.0);
+    cloudlut::Axis a{"theta_s", "rad", 0.0, kPi, n, false, w};
+    for (int i = 0; i < n; ++i) {
+      const auto node = cloudlut::bake::scatteringNode(a.value(i), 0.3, 0.4);
+      const glm::vec4 x = scatteringAxes(glm::vec3(node.S), glm::vec3(node.v), glm::vec3(node.l), 1.0f, 0.0f, 1.0f,
+                                               static_cast<float>(w));
+      CHECK(x.x * static_cast<float>(n - 1) == Approx(i).margin(2e-3));
+    }
+  }
 }
 
 TEST_CASE("phase functions integrate to one over the sphere", "[parameterization][phase]") {

@@ -67,7 +67,7 @@ Table4D makeTable(const ScatteringSettings& s, const char* name, const char* cha
 }  // namespace
 
 double sunZenithWarp(int nodes) {
-  constexpr double kMaxWarp = 7.0, kMaxPoleSpacing = 20.0 / 180.0 * kPi;
+  constexpr double kMaxWarp = 7.0, kMaxPoleSpacing = 21.0 / 180.0 * kPi;
   const double uniform = kPi / std::max(1, nodes - 1);
   // pole spacing of warp w relative to uniform nodes: (w/2)·coth(w/2), increasing from 1 at w = 0
   const auto poleFactor = [](double w) { return w < 1e-9 ? 1.0 : 0.5 * w / std::tanh(0.5 * w); };
@@ -78,7 +78,7 @@ double sunZenithWarp(int nodes) {
     const double mid = 0.5 * (lo + hi);
     (poleFactor(mid) * uniform <= kMaxPoleSpacing ? lo : hi) = mid;
   }
-  return std::round(lo * 1000.0) / 1000.0;  // a short number in the files
+  return std::floor(lo * 1000.0) / 1000.0;  // a short number in the files, rounded toward uniform
 }
 
 const char* toString(ScatteringMethod method) { return method == ScatteringMethod::Paper ? "paper" : "fast"; }

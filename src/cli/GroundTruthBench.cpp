@@ -154,7 +154,8 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
 
   MediumSpec medium;  // the defaults: noise model, seed 1, β = 0.07, R = 183.8, CS 0.9 / 0.7
   std::string lutNote;
-  const fs::path lutDir = cache / (options.quick ? "luts-quick" : "luts");
+  // one cache per format version: tables of an older version are not re-read (re-baked instead)
+  const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + (options.quick ? "-quick" : ""));
   reportProgress(options.progress, "ground-truth: LUT set", 0.0);
   const bool haveLuts = ensureLutSet(lutDir, medium, options.quick, lutNote);
   const ReferenceParticle particle(medium.model, medium.seed);

@@ -48,6 +48,12 @@ nlohmann::json describeLoaded(const io::LoadedTable& loaded) {
   return d;
 }
 
+std::string formatNumber(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
 void printTable(const nlohmann::json& d) {
   std::printf("table %s\n", d.value("name", std::string("?")).c_str());
   std::printf("  file      %s (%s samples, checksum %s)\n", d["file"].get<std::string>().c_str(),
@@ -56,9 +62,11 @@ void printTable(const nlohmann::json& d) {
   std::printf("  dims      %d x %d x %d x %d\n", dims[0].get<int>(), dims[1].get<int>(), dims[2].get<int>(), dims[3].get<int>());
   int k = 0;
   for (const auto& a : d["axes"]) {
-    std::printf("  axis %d    %-8s [%g, %g] %s, %d nodes%s\n", k++, a.value("name", std::string()).c_str(),
+    const double warp = a.value("warp", 0.0);
+    const std::string warpText = warp > 0.0 ? ", nodes concentrated about the middle (warp " + formatNumber(warp) + ")" : "";
+    std::printf("  axis %d    %-8s [%g, %g] %s, %d nodes%s%s\n", k++, a.value("name", std::string()).c_str(),
                 a.value("min", 0.0), a.value("max", 0.0), a.value("unit", std::string()).c_str(),
-                a.value("size", 0), a.value("periodic", false) ? ", periodic" : "");
+                a.value("size", 0), a.value("periodic", false) ? ", periodic" : "", warpText.c_str());
   }
   for (const auto& s : d["statistics"]) {
     std::printf("  channel   %-13s min %.6g  max %.6g  mean %.6g%s\n      %s\n", s["name"].get<std::string>().c_str(),
