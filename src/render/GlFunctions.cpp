@@ -16,6 +16,11 @@ GlFunctions loadGlFunctions(const GlContext& context) {
   return gl;
 }
 
+GlFunctions makeCurrentAndLoadGlFunctions(GlContext& context) {
+  context.makeCurrent();
+  return loadGlFunctions(context);
+}
+
 void checkGlError(const GlFunctions& gl, const char* what) {
   const GLenum error = gl.GetError();
   if (error == GL_NO_ERROR) return;

@@ -93,6 +93,9 @@ struct GlFunctions {
 // one that is missing.
 GlFunctions loadGlFunctions(const GlContext& context);
 
+// Makes the context current, then loads them from it.
+GlFunctions makeCurrentAndLoadGlFunctions(GlContext& context);
+
 // Throws GlError("<what>: GL error 0x...") if glGetError reports an error.
 void checkGlError(const GlFunctions& gl, const char* what);
 

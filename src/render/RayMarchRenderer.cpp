@@ -3,20 +3,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include <glm/geometric.hpp>
 
 #include "core/Errors.h"
 #include "render/GlFunctions.h"
+#include "render/GlResources.h"
 #include "render/ShaderSources.h"
 
 namespace cloudlut::render {
 
 namespace {
 
-constexpr float kNoDistance = 3.0e38f;
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -27,18 +26,6 @@ struct GpuRmParticle {
 };
 static_assert(sizeof(GpuRmParticle) == 64, "GpuRmParticle must match raymarch.frag.glsl");
 
-const char* const kFiles[2][2] = {{"raymarch.vert.glsl", nullptr}, {"cloudlut_phase.glsl", "raymarch.frag.glsl"}};
-
-std::string assemble(bool fragment) {
-  std::string source = "#version 450 core\n#define CLOUDLUT_FN\n";
-  int number = 1;
-  for (const char* f : kFiles[fragment ? 1 : 0]) {
-    if (!f) continue;
-    source += "#line 1 " + std::to_string(number++) + "\n" + embeddedShaderFile(f) + "\n";
-  }
-  return source;
-}
-
 }  // namespace
 
 struct RayMarchRenderer::Impl {
@@ -48,12 +35,7 @@ struct RayMarchRenderer::Impl {
   int modelKind = 0;  // 0 homogeneous, 1 radial, 2 grid
   int gridRes = 0;
 
-  static GlFunctions loadCurrent(GlContext& c) {
-    c.makeCurrent();
-    return loadGlFunctions(c);
-  }
-
-  Impl(GlContext& c, const ReferenceParticle& model) : context(c), gl(loadCurrent(c)) {
+  Impl(GlContext& c, const ReferenceParticle& model) : context(c), gl(makeCurrentAndLoadGlFunctions(c)) {
     buildProgram();
     gl.GenVertexArrays(1, &vao);
     gl.GenBuffers(1, &particleBuffer);
@@ -71,16 +53,7 @@ struct RayMarchRenderer::Impl {
                 model.density(glm::vec3(-1.0f + step * static_cast<float>(i), -1.0f + step * static_cast<float>(j),
                                         -1.0f + step * static_cast<float>(k)));
     }
-    gl.GenTextures(1, &densityTexture);
-    gl.BindTexture(GL_TEXTURE_3D, densityTexture);
-    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, gridRes, gridRes, gridRes, 0, GL_RED, GL_FLOAT, grid.data());
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-      gl.TexParameteri(GL_TEXTURE_3D, w, GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_BASE_LEVEL, 0);
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
+    densityTexture = createFloatTexture3D(gl, context, "the density grid", gridRes, gridRes, gridRes, 1, grid.data());
     checkGlError(gl, "creating the ray marcher");
   }
 
@@ -96,47 +69,13 @@ struct RayMarchRenderer::Impl {
     gl.DeleteProgram(program);
   }
 
-  GLuint compile(GLenum type, bool fragment) {
-    const std::string source = assemble(fragment);
-    const GLuint shader = gl.CreateShader(type);
-    const char* text = source.c_str();
-    gl.ShaderSource(shader, 1, &text, nullptr);
-    gl.CompileShader(shader);
-    GLint ok = 0;
-    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      GLint length = 0;
-      gl.GetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-      gl.GetShaderInfoLog(shader, length, nullptr, log.data());
-      gl.DeleteShader(shader);
-      throw GlError(std::string("ray-march ") + (fragment ? "fragment" : "vertex") +
-                    " shader does not compile (source 1 = " + (fragment ? "cloudlut_phase.glsl, 2 = raymarch.frag.glsl" : "raymarch.vert.glsl") +
-                    "):\n" + log.c_str());
-    }
-    return shader;
-  }
-
   void buildProgram() {
-    const GLuint vs = compile(GL_VERTEX_SHADER, false), fs = compile(GL_FRAGMENT_SHADER, true);
-    program = gl.CreateProgram();
-    gl.AttachShader(program, vs);
-    gl.AttachShader(program, fs);
-    gl.LinkProgram(program);
-    gl.DeleteShader(vs);
-    gl.DeleteShader(fs);
-    GLint ok = 0;
-    gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-      GLint length = 0;
-      gl.GetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-      gl.GetProgramInfoLog(program, length, nullptr, log.data());
-      throw GlError("ray-march program does not link:\n" + std::string(log.c_str()));
-    }
+    const GLuint vs = compileShader(gl, GL_VERTEX_SHADER, assembleShader({"raymarch.vert.glsl"}),
+                                    "source 1 = raymarch.vert.glsl", "ray-march");
+    const GLuint fs = compileShader(gl, GL_FRAGMENT_SHADER, assembleShader({"cloudlut_phase.glsl", "raymarch.frag.glsl"}),
+                                    "source 1 = cloudlut_phase.glsl, 2 = raymarch.frag.glsl", "ray-march");
+    program = linkProgram(gl, {vs, fs}, "ray-march program");
   }
-
-  GLint uniform(const char* name) const { return gl.GetUniformLocation(program, name); }
 
   Image render(const std::vector<Particle>& particles, const RayMarchSettings& s, RenderStats* stats) {
     checkImageSize(s.width, s.height);
@@ -187,66 +126,42 @@ struct RayMarchRenderer::Impl {
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer);
     if (stats) stats->uploadSeconds = secondsSince(t0);
 
-    GLuint fbo = 0, colour[2] = {0, 0};
-    gl.GenFramebuffers(1, &fbo);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    gl.GenRenderbuffers(2, colour);
-    const GLenum storage[2] = {GL_RGBA32F, GL_R32F};
-    for (int i = 0; i < 2; ++i) {
-      gl.BindRenderbuffer(GL_RENDERBUFFER, colour[i]);
-      gl.RenderbufferStorage(GL_RENDERBUFFER, storage[i], s.width, s.height);
-      gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + i), GL_RENDERBUFFER,
-                                 colour[i]);
-    }
-    struct Cleanup {
-      const GlFunctions& gl;
-      GLuint& fbo;
-      GLuint* colour;
-      ~Cleanup() {
-        gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-        gl.DeleteFramebuffers(1, &fbo);
-        gl.DeleteRenderbuffers(2, colour);
-      }
-    } cleanup{gl, fbo, colour};
-    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError("the float framebuffer (RGBA32F + R32F) is not complete on " + context.description());
-    const GLenum drawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    gl.DrawBuffers(2, drawBuffers);
-    gl.Viewport(0, 0, s.width, s.height);
+    FloatRenderTarget target(gl, context, s.width, s.height);
     gl.Disable(GL_DEPTH_TEST);
     gl.Disable(GL_CULL_FACE);
     gl.Disable(GL_BLEND);
 
     gl.UseProgram(program);
-    gl.Uniform1i(uniform("uCount"), static_cast<GLint>(records.size()));
-    gl.Uniform3f(uniform("uEye"), eye.x, eye.y, eye.z);
-    gl.Uniform3f(uniform("uRay00"), r00.x, r00.y, r00.z);
-    gl.Uniform3f(uniform("uRayDx"), rdx.x, rdx.y, rdx.z);
-    gl.Uniform3f(uniform("uRayDy"), rdy.x, rdy.y, rdy.z);
-    gl.Uniform1f(uniform("uHeight"), static_cast<float>(s.height));
+    const ProgramUniforms uniforms(gl, program);
+    uniforms.set("uCount", static_cast<GLint>(records.size()));
+    uniforms.set("uEye", eye);
+    uniforms.set("uRay00", r00);
+    uniforms.set("uRayDx", rdx);
+    uniforms.set("uRayDy", rdy);
+    uniforms.set("uHeight", static_cast<float>(s.height));
     const Lighting& light = s.view.lighting;
-    gl.Uniform3f(uniform("uSun"), sun.x, sun.y, sun.z);
-    gl.Uniform3f(uniform("uSunColor"), light.sunColor.x, light.sunColor.y, light.sunColor.z);
-    gl.Uniform3f(uniform("uSkyColor"), light.skyColor.x, light.skyColor.y, light.skyColor.z);
-    gl.Uniform1i(uniform("uTerms"), static_cast<GLint>(s.terms));
-    gl.Uniform1i(uniform("uSteps"), s.steps);
-    gl.Uniform1i(uniform("uAdaptive"), s.adaptive ? 1 : 0);
-    gl.Uniform1i(uniform("uShadowSteps"), s.shadowSteps);
-    gl.Uniform1i(uniform("uOctaves"), s.octaves);
-    gl.Uniform3f(uniform("uOctaveABC"), s.a, s.b, s.c);
-    gl.Uniform1i(uniform("uFirstKind"), s.first.kind);
-    gl.Uniform1f(uniform("uFirstParam"), s.first.param);
-    gl.Uniform1i(uniform("uLaterKind"), s.later.kind);
-    gl.Uniform1f(uniform("uLaterParam"), s.later.param);
-    gl.Uniform1f(uniform("uSigma"), s.unitOpticalRadius);
-    gl.Uniform1i(uniform("uModel"), modelKind);
-    gl.Uniform1f(uniform("uGridRes"), static_cast<float>(gridRes));
-    gl.Uniform1f(uniform("uMinTransmittance"), s.minTransmittance);
-    gl.Uniform1f(uniform("uMinOpacityForDistance"), kMinOpacityForDistance);
-    gl.Uniform1f(uniform("uNoDistance"), kNoDistance);
+    uniforms.set("uSun", sun);
+    uniforms.set("uSunColor", light.sunColor);
+    uniforms.set("uSkyColor", light.skyColor);
+    uniforms.set("uTerms", static_cast<GLint>(s.terms));
+    uniforms.set("uSteps", s.steps);
+    uniforms.set("uAdaptive", s.adaptive ? 1 : 0);
+    uniforms.set("uShadowSteps", s.shadowSteps);
+    uniforms.set("uOctaves", s.octaves);
+    uniforms.set("uOctaveABC", glm::vec3(s.a, s.b, s.c));
+    uniforms.set("uFirstKind", s.first.kind);
+    uniforms.set("uFirstParam", s.first.param);
+    uniforms.set("uLaterKind", s.later.kind);
+    uniforms.set("uLaterParam", s.later.param);
+    uniforms.set("uSigma", s.unitOpticalRadius);
+    uniforms.set("uModel", modelKind);
+    uniforms.set("uGridRes", static_cast<float>(gridRes));
+    uniforms.set("uMinTransmittance", s.minTransmittance);
+    uniforms.set("uMinOpacityForDistance", kMinOpacityForDistance);
+    uniforms.set("uNoDistance", kNoDistance);
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_3D, densityTexture);
-    gl.Uniform1i(uniform("uDensity"), 0);
+    uniforms.set("uDensity", 0);
 
     const auto t1 = Clock::now();
     gl.BindVertexArray(vao);
@@ -256,33 +171,7 @@ struct RayMarchRenderer::Impl {
     if (stats) stats->renderSeconds = secondsSince(t1);
 
     const auto t2 = Clock::now();
-    const std::size_t pixels = static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height);
-    std::vector<float> colourData(pixels * 4), distanceData(pixels);
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl.ReadPixels(0, 0, s.width, s.height, GL_RGBA, GL_FLOAT, colourData.data());
-    gl.ReadBuffer(GL_COLOR_ATTACHMENT1);
-    gl.ReadPixels(0, 0, s.width, s.height, GL_RED, GL_FLOAT, distanceData.data());
-    checkGlError(gl, "reading the image back");
-    Image image;
-    image.width = s.width;
-    image.height = s.height;
-    image.rgba.resize(pixels * 4);
-    image.distance.resize(pixels);
-    const std::size_t w = static_cast<std::size_t>(s.width);
-    for (int y = 0; y < s.height; ++y) {
-      const std::size_t src = static_cast<std::size_t>(s.height - 1 - y) * w, dst = static_cast<std::size_t>(y) * w;
-      for (std::size_t x = 0; x < w; ++x) {
-        const float* c = &colourData[4 * (src + x)];
-        float* o = &image.rgba[4 * (dst + x)];
-        o[0] = c[0];
-        o[1] = c[1];
-        o[2] = c[2];
-        o[3] = 1.0f - c[3];
-        const float d = distanceData[src + x];
-        image.distance[dst + x] = d >= kNoDistance ? std::numeric_limits<float>::infinity() : d;
-      }
-    }
+    Image image = target.readBack();
     if (stats) stats->readbackSeconds = secondsSince(t2);
     return image;
   }

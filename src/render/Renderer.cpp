@@ -16,14 +16,13 @@
 #include "core/TableLookup.h"
 #include "render/CloudscapeGrid.h"
 #include "render/GlFunctions.h"
+#include "render/GlResources.h"
 #include "render/ShaderSources.h"
 
 namespace cloudlut::render {
 
 namespace {
 
-// Cleared into the distance buffer and written by fragments without one; read back as +inf.
-constexpr float kNoDistance = 3.0e38f;
 // Bytes per pixel the render needs at its peak: the float framebuffer (20), its read-back
 // copy (20), the Image (20) and an encoder's copy (≤ 24).
 constexpr long double kBytesPerPixel = 84.0L;
@@ -166,7 +165,8 @@ struct Renderer::Impl {
   float firstPhaseParam = 0.9f;
   std::string luts;
 
-  Impl(GlContext& c, const io::LutSet& set) : context(c), gl(loadCurrent(c)), luts(set.dir.string()) {
+  Impl(GlContext& c, const io::LutSet& set)
+      : context(c), gl(makeCurrentAndLoadGlFunctions(c)), luts(set.dir.string()) {
     const Table4D& od = requireTable(set, "optical_depth");
     const Table4D& l1 = requireTable(set, "single_scattering");
     const Table4D& lm = requireTable(set, "multiple_scattering");
@@ -206,11 +206,6 @@ struct Renderer::Impl {
     checkGlError(gl, "creating the renderer");
   }
 
-  static GlFunctions loadCurrent(GlContext& c) {
-    c.makeCurrent();
-    return loadGlFunctions(c);
-  }
-
   ~Impl() {
     try {
       context.makeCurrent();
@@ -239,96 +234,32 @@ struct Renderer::Impl {
       throw FileError(luts, table.name() + ": payload size does not match its dimensions");
     for (float v : table.data())
       if (!std::isfinite(v)) throw FileError(luts, table.name() + ": holds a non-finite value");
-    GLint max3d = 0;
-    gl.GetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
-    const long long depth = static_cast<long long>(d[2]) * d[3];
-    if (d[0] > max3d || d[1] > max3d || depth > max3d)
-      throw UsageError(table.name() + " is " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
-                       std::to_string(depth) + " as a 3D texture; this OpenGL (" + context.description() +
-                       ") allows at most " + std::to_string(max3d) + " texels per side");
     TableTexture t;
+    t.texture = createFloatTexture3D(gl, context, table.name(), d[0], d[1], static_cast<long long>(d[2]) * d[3],
+                                     channels, table.data().data());
     t.dims = glm::vec4(d[0], d[1], d[2], d[3]);
     if (scattering) {
       const Axis& a = table.axes()[3];
       t.scatteringAxes = glm::vec3(static_cast<float>(a.min), static_cast<float>(a.max),
                                    static_cast<float>(table.axes()[0].warp));
-      if (!std::isfinite(t.scatteringAxes.x) || !std::isfinite(t.scatteringAxes.y))
+      if (!std::isfinite(t.scatteringAxes.x) || !std::isfinite(t.scatteringAxes.y)) {
+        gl.DeleteTextures(1, &t.texture);
         throw FileError(luts, table.name() + ": density axis range is not finite");
+      }
     }
-    static const GLenum formats[4] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
-    static const GLint internalFormats[4] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
-    gl.GenTextures(1, &t.texture);
-    gl.BindTexture(GL_TEXTURE_3D, t.texture);
-    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl.TexImage3D(GL_TEXTURE_3D, 0, internalFormats[channels - 1], d[0], d[1], static_cast<GLsizei>(depth), 0,
-                  formats[channels - 1], GL_FLOAT, table.data().data());
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_BASE_LEVEL, 0);
-    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
     checkGlError(gl, ("uploading table " + table.name()).c_str());
     return t;
   }
 
-  GLuint compile(GLenum type, const std::string& source, bool fragment, const std::string& legend = "") {
-    const GLuint shader = gl.CreateShader(type);
-    const char* text = source.c_str();
-    gl.ShaderSource(shader, 1, &text, nullptr);
-    gl.CompileShader(shader);
-    GLint ok = 0;
-    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      GLint length = 0;
-      gl.GetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-      gl.GetShaderInfoLog(shader, length, nullptr, log.data());
-      gl.DeleteShader(shader);
-      throw GlError(std::string(type == GL_COMPUTE_SHADER ? "compute" : fragment ? "fragment" : "vertex") +
-                    " shader does not compile (" + (legend.empty() ? shaderFileLegend(fragment) : legend) +
-                    "):\n" + log.c_str());
-    }
-    return shader;
-  }
-
   void buildProgram() {
-    const GLuint vs = compile(GL_VERTEX_SHADER, particleVertexSource(), false);
-    const GLuint fs = compile(GL_FRAGMENT_SHADER, particleFragmentSource(), true);
-    program = gl.CreateProgram();
-    gl.AttachShader(program, vs);
-    gl.AttachShader(program, fs);
-    gl.LinkProgram(program);
-    gl.DeleteShader(vs);
-    gl.DeleteShader(fs);
-    GLint ok = 0;
-    gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-      GLint length = 0;
-      gl.GetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-      gl.GetProgramInfoLog(program, length, nullptr, log.data());
-      throw GlError("particle program does not link:\n" + std::string(log.c_str()));
-    }
+    const GLuint vs = compileShader(gl, GL_VERTEX_SHADER, particleVertexSource(), shaderFileLegend(false));
+    const GLuint fs = compileShader(gl, GL_FRAGMENT_SHADER, particleFragmentSource(), shaderFileLegend(true));
+    program = linkProgram(gl, {vs, fs}, "particle program");
   }
 
   GLuint linkCompute(const std::vector<std::string>& files, const std::string& defines) {
-    const GLuint cs = compile(GL_COMPUTE_SHADER, assembleShader(files, defines), false, shaderFileLegend(files));
-    const GLuint p = gl.CreateProgram();
-    gl.AttachShader(p, cs);
-    gl.LinkProgram(p);
-    gl.DeleteShader(cs);
-    GLint ok = 0;
-    gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-      GLint length = 0;
-      gl.GetProgramiv(p, GL_INFO_LOG_LENGTH, &length);
-      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-      gl.GetProgramInfoLog(p, length, nullptr, log.data());
-      throw GlError("compute program " + files.back() + " does not link:\n" + std::string(log.c_str()));
-    }
-    return p;
+    const GLuint cs = compileShader(gl, GL_COMPUTE_SHADER, assembleShader(files, defines), shaderFileLegend(files));
+    return linkProgram(gl, {cs}, "compute program " + files.back());
   }
 
   void buildComputePrograms() {
@@ -343,14 +274,14 @@ struct Renderer::Impl {
     resolveProgram = linkCompute({"volume_resolve.comp.glsl"}, "");
   }
 
-  GLint uniform(const char* name) const { return gl.GetUniformLocation(program, name); }
   GLint uniformOf(GLuint p, const char* name) const { return gl.GetUniformLocation(p, name); }
 
-  void bindTable(int unit, const char* sampler, const char* dimsName, const TableTexture& t) {
+  void bindTable(const ProgramUniforms& uniforms, int unit, const char* sampler, const char* dimsName,
+                 const TableTexture& t) {
     gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
     gl.BindTexture(GL_TEXTURE_3D, t.texture);
-    gl.Uniform1i(uniform(sampler), unit);
-    gl.Uniform4f(uniform(dimsName), t.dims.x, t.dims.y, t.dims.z, t.dims.w);
+    uniforms.set(sampler, unit);
+    uniforms.set(dimsName, t.dims);
   }
 
   void requireStorage(long double bytes, const std::string& what) const {
@@ -568,17 +499,16 @@ struct Renderer::Impl {
 
     // Float framebuffer: radiance + transmittance (a texture, for the resolve), and distance;
     // the heads of the volume lists.
-    GLuint fbo = 0, colourTex = 0, distanceRb = 0, headsTex = 0;
-    gl.GenFramebuffers(1, &fbo);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    gl.GenTextures(1, &colourTex);
-    gl.BindTexture(GL_TEXTURE_2D, colourTex);
-    gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colourTex, 0);
-    gl.GenRenderbuffers(1, &distanceRb);
-    gl.BindRenderbuffer(GL_RENDERBUFFER, distanceRb);
-    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_R32F, w, h);
-    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, distanceRb);
+    FloatRenderTarget target(gl, context, w, h);
+    const GLuint colourTex = target.colourTexture();
+    GLuint headsTex = 0;
+    struct DeleteHeads {
+      const GlFunctions& gl;
+      GLuint& texture;
+      ~DeleteHeads() {
+        if (texture) gl.DeleteTextures(1, &texture);
+      }
+    } deleteHeads{gl, headsTex};
     if (volume) {
       gl.GenTextures(1, &headsTex);
       gl.BindTexture(GL_TEXTURE_2D, headsTex);
@@ -587,23 +517,6 @@ struct Renderer::Impl {
       gl.ClearTexImage(headsTex, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
       gl.BindImageTexture(0, headsTex, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     }
-    struct Cleanup {
-      const GlFunctions& gl;
-      GLuint fbo, colourTex, distanceRb, headsTex;
-      ~Cleanup() {
-        gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-        gl.DeleteFramebuffers(1, &fbo);
-        gl.DeleteTextures(1, &colourTex);
-        if (headsTex) gl.DeleteTextures(1, &headsTex);
-        gl.DeleteRenderbuffers(1, &distanceRb);
-      }
-    } cleanup{gl, fbo, colourTex, distanceRb, headsTex};
-    const GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError("the float framebuffer (RGBA32F + R32F) is not complete on " + context.description());
-    const GLenum drawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    gl.DrawBuffers(2, drawBuffers);
-    gl.Viewport(0, 0, w, h);
     const float clearColour[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     const float clearDistance[4] = {kNoDistance, 0.0f, 0.0f, 0.0f};
     gl.ClearBufferfv(GL_COLOR, 0, clearColour);
@@ -619,31 +532,32 @@ struct Renderer::Impl {
     gl.BlendEquationi(1, GL_MIN);
 
     gl.UseProgram(program);
+    const ProgramUniforms uniforms(gl, program);
     Camera camera = s.view.camera;
     const CameraFrame frame(camera, w, h);
     const glm::vec3 eye = frame.eye();
     const float nearPlane = farPlane * 1e-6f;
     const glm::mat4 viewProjection = frame.projectionMatrix(nearPlane, farPlane) * frame.viewMatrix();
-    gl.UniformMatrix4fv(uniform("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+    uniforms.set("uViewProjection", viewProjection);
     const Lighting& light = s.view.lighting;
-    gl.Uniform3f(uniform("uEye"), eye.x, eye.y, eye.z);
+    uniforms.set("uEye", eye);
     const glm::vec3 sun = glm::normalize(light.sunDirection);
-    gl.Uniform3f(uniform("uSunDirection"), sun.x, sun.y, sun.z);
-    gl.Uniform3f(uniform("uSunColor"), light.sunColor.x, light.sunColor.y, light.sunColor.z);
-    gl.Uniform3f(uniform("uSkyColor"), light.skyColor.x, light.skyColor.y, light.skyColor.z);
-    gl.Uniform1i(uniform("uTerms"), static_cast<GLint>(s.terms));
-    bindTable(0, "uOpticalDepth", "uOpticalDepthDims", opticalDepth);
-    bindTable(1, "uSingle", "uSingleDims", single);
-    bindTable(2, "uMultiple", "uMultipleDims", multiple);
-    gl.Uniform3f(uniform("uSingleAxes"), single.scatteringAxes.x, single.scatteringAxes.y, single.scatteringAxes.z);
-    gl.Uniform3f(uniform("uMultipleAxes"), multiple.scatteringAxes.x, multiple.scatteringAxes.y, multiple.scatteringAxes.z);
-    gl.Uniform1f(uniform("uUnitOpticalRadius"), unitOpticalRadius);
-    gl.Uniform1i(uniform("uFirstPhaseKind"), firstPhaseKind);
-    gl.Uniform1f(uniform("uFirstPhaseParam"), firstPhaseParam);
-    gl.Uniform1f(uniform("uMinOpacityForDistance"), kMinOpacityForDistance);
-    gl.Uniform1f(uniform("uNoDistance"), kNoDistance);
-    gl.Uniform1i(uniform("uUseOrder"), useOrder ? 1 : 0);
-    gl.Uniform1i(uniform("uVolume"), volume ? 1 : 0);
+    uniforms.set("uSunDirection", sun);
+    uniforms.set("uSunColor", light.sunColor);
+    uniforms.set("uSkyColor", light.skyColor);
+    uniforms.set("uTerms", static_cast<GLint>(s.terms));
+    bindTable(uniforms, 0, "uOpticalDepth", "uOpticalDepthDims", opticalDepth);
+    bindTable(uniforms, 1, "uSingle", "uSingleDims", single);
+    bindTable(uniforms, 2, "uMultiple", "uMultipleDims", multiple);
+    uniforms.set("uSingleAxes", single.scatteringAxes);
+    uniforms.set("uMultipleAxes", multiple.scatteringAxes);
+    uniforms.set("uUnitOpticalRadius", unitOpticalRadius);
+    uniforms.set("uFirstPhaseKind", firstPhaseKind);
+    uniforms.set("uFirstPhaseParam", firstPhaseParam);
+    uniforms.set("uMinOpacityForDistance", kMinOpacityForDistance);
+    uniforms.set("uNoDistance", kNoDistance);
+    uniforms.set("uUseOrder", useOrder ? 1 : 0);
+    uniforms.set("uVolume", volume ? 1 : 0);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer);
     if (keysBytes == 0) ensureBuffer(keysBuffer, 64, keysBytes);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, keysBuffer);
@@ -692,34 +606,7 @@ struct Renderer::Impl {
 
     // Read back, flip to top-first rows, and turn transmittance into alpha.
     const auto t2 = Clock::now();
-    const std::size_t pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-    std::vector<float> colourData(pixels * 4), distanceData(pixels);
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, colourData.data());
-    gl.ReadBuffer(GL_COLOR_ATTACHMENT1);
-    gl.ReadPixels(0, 0, w, h, GL_RED, GL_FLOAT, distanceData.data());
-    checkGlError(gl, "reading the image back");
-
-    Image image;
-    image.width = w;
-    image.height = h;
-    image.rgba.resize(pixels * 4);
-    image.distance.resize(pixels);
-    const std::size_t ww = static_cast<std::size_t>(w);
-    for (int y = 0; y < h; ++y) {
-      const std::size_t src = static_cast<std::size_t>(h - 1 - y) * ww, dst = static_cast<std::size_t>(y) * ww;
-      for (std::size_t x = 0; x < ww; ++x) {
-        const float* c = &colourData[4 * (src + x)];
-        float* o = &image.rgba[4 * (dst + x)];
-        o[0] = c[0];
-        o[1] = c[1];
-        o[2] = c[2];
-        o[3] = 1.0f - c[3];
-        const float d = distanceData[src + x];
-        image.distance[dst + x] = d >= kNoDistance ? std::numeric_limits<float>::infinity() : d;
-      }
-    }
+    Image image = target.readBack();
     if (stats) stats->readbackSeconds = secondsSince(t2);
     if (s.downscale > 1) {
       const auto t4 = Clock::now();

@@ -1,0 +1,153 @@
+#include "render/GlResources.h"
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/Errors.h"
+#include "render/Renderer.h"
+
+namespace cloudlut::render {
+namespace {
+
+const char* stageName(GLenum type) {
+  return type == GL_COMPUTE_SHADER ? "compute" : type == GL_FRAGMENT_SHADER ? "fragment" : "vertex";
+}
+
+// The info log of a shader or program (getiv/getInfoLog the matching pair), up to its first NUL.
+template <typename GetIv, typename GetLog>
+std::string infoLog(GLuint object, GetIv getiv, GetLog getLog) {
+  GLint length = 0;
+  getiv(object, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+  getLog(object, length, nullptr, log.data());
+  return log.c_str();
+}
+
+}  // namespace
+
+GLuint compileShader(const GlFunctions& gl, GLenum type, const std::string& source, const std::string& legend,
+                     const std::string& program) {
+  const GLuint shader = gl.CreateShader(type);
+  const char* text = source.c_str();
+  gl.ShaderSource(shader, 1, &text, nullptr);
+  gl.CompileShader(shader);
+  GLint ok = 0;
+  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    const std::string log = infoLog(shader, gl.GetShaderiv, gl.GetShaderInfoLog);
+    gl.DeleteShader(shader);
+    throw GlError((program.empty() ? "" : program + " ") + stageName(type) + " shader does not compile (" + legend +
+                  "):\n" + log);
+  }
+  return shader;
+}
+
+GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> shaders, const std::string& what) {
+  const GLuint program = gl.CreateProgram();
+  for (GLuint s : shaders) gl.AttachShader(program, s);
+  gl.LinkProgram(program);
+  for (GLuint s : shaders) gl.DeleteShader(s);
+  GLint ok = 0;
+  gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    const std::string log = infoLog(program, gl.GetProgramiv, gl.GetProgramInfoLog);
+    gl.DeleteProgram(program);
+    throw GlError(what + " does not link:\n" + log);
+  }
+  return program;
+}
+
+GLuint createFloatTexture3D(const GlFunctions& gl, const GlContext& context, const std::string& what, long long width,
+                            long long height, long long depth, int channels, const float* data) {
+  GLint max3d = 0;
+  gl.GetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
+  if (width > max3d || height > max3d || depth > max3d)
+    throw UsageError(what + " is " + std::to_string(width) + "x" + std::to_string(height) + "x" +
+                     std::to_string(depth) + " as a 3D texture; this OpenGL (" + context.description() +
+                     ") allows at most " + std::to_string(max3d) + " texels per side");
+  static const GLenum formats[4] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+  static const GLint internalFormats[4] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
+  GLuint texture = 0;
+  gl.GenTextures(1, &texture);
+  gl.BindTexture(GL_TEXTURE_3D, texture);
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  gl.TexImage3D(GL_TEXTURE_3D, 0, internalFormats[channels - 1], static_cast<GLsizei>(width),
+                static_cast<GLsizei>(height), static_cast<GLsizei>(depth), 0, formats[channels - 1], GL_FLOAT, data);
+  gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    gl.TexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+  gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_BASE_LEVEL, 0);
+  gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
+  return texture;
+}
+
+void ProgramUniforms::set(const char* name, const glm::mat4& m) const {
+  gl_.UniformMatrix4fv(location(name), 1, GL_FALSE, glm::value_ptr(m));
+}
+
+FloatRenderTarget::FloatRenderTarget(const GlFunctions& gl, const GlContext& context, int width, int height)
+    : gl_(gl), width_(width), height_(height) {
+  gl.GenFramebuffers(1, &framebuffer_);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  gl.GenTextures(1, &colourTexture_);
+  gl.BindTexture(GL_TEXTURE_2D, colourTexture_);
+  gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, width, height);
+  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colourTexture_, 0);
+  gl.GenRenderbuffers(1, &distanceRenderbuffer_);
+  gl.BindRenderbuffer(GL_RENDERBUFFER, distanceRenderbuffer_);
+  gl.RenderbufferStorage(GL_RENDERBUFFER, GL_R32F, width, height);
+  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, distanceRenderbuffer_);
+  if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    release();
+    throw GlError("the float framebuffer (RGBA32F + R32F) is not complete on " + context.description());
+  }
+  const GLenum drawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  gl.DrawBuffers(2, drawBuffers);
+  gl.Viewport(0, 0, width, height);
+}
+
+FloatRenderTarget::~FloatRenderTarget() { release(); }
+
+void FloatRenderTarget::release() {
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl_.DeleteFramebuffers(1, &framebuffer_);
+  gl_.DeleteTextures(1, &colourTexture_);
+  gl_.DeleteRenderbuffers(1, &distanceRenderbuffer_);
+}
+
+Image FloatRenderTarget::readBack() const {
+  const std::size_t w = static_cast<std::size_t>(width_), pixels = w * static_cast<std::size_t>(height_);
+  std::vector<float> colour(pixels * 4), distance(pixels);
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, colour.data());
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
+  gl_.ReadPixels(0, 0, width_, height_, GL_RED, GL_FLOAT, distance.data());
+  checkGlError(gl_, "reading the image back");
+
+  Image image;
+  image.width = width_;
+  image.height = height_;
+  image.rgba.resize(pixels * 4);
+  image.distance.resize(pixels);
+  for (int y = 0; y < height_; ++y) {  // GL's rows are bottom first
+    const std::size_t src = static_cast<std::size_t>(height_ - 1 - y) * w, dst = static_cast<std::size_t>(y) * w;
+    for (std::size_t x = 0; x < w; ++x) {
+      const float* c = &colour[4 * (src + x)];
+      float* o = &image.rgba[4 * (dst + x)];
+      o[0] = c[0];
+      o[1] = c[1];
+      o[2] = c[2];
+      o[3] = 1.0f - c[3];
+      const float d = distance[src + x];
+      image.distance[dst + x] = d >= kNoDistance ? std::numeric_limits<float>::infinity() : d;
+    }
+  }
+  return image;
+}
+
+}  // namespace cloudlut::render
