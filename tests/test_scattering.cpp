@@ -169,6 +169,10 @@ namespace {
 // Table (renderer's interpolation) against MC at random geometry for one density slice.
 struct SliceCheck {
   ErrorStats table, noise;  // |table − MC| / MC, and the MC's own se / MC
+  // Rows (carrying ≥ 1% of the mean) whose error exceeds 3% plus three of their own MC
+  // standard errors: the 95th-percentile target judged row by row against each row's noise
+  // (the dense slices' dark rows have heavy-tailed MC estimates that a pooled noise figure misses).
+  std::size_t rowsBeyond3Percent = 0;
 };
 SliceCheck checkSlice(const Table4D& single, const Table4D& multiple, int k, int rows, long long paths,
                       bool converged, std::uint64_t seed, bool onNodes = false) {
@@ -201,6 +205,10 @@ SliceCheck checkSlice(const Table4D& single, const Table4D& multiple, int k, int
   std::vector<double> rel;
   for (std::size_t i = 0; i < mc.size(); ++i) rel.push_back(mc[i] > 0 ? mc[i] - se[i] : 0.0);
   c.noise = relativeErrors(rel, mc);
+  double mean = 0.0;
+  for (double m : mc) mean += m / static_cast<double>(mc.size());
+  for (std::size_t i = 0; i < mc.size(); ++i)
+    if (mc[i] >= 0.01 * mean && std::abs(tm[i] - mc[i]) > 0.03 * mc[i] + 3.0 * se[i]) ++c.rowsBeyond3Percent;
   return c;
 }
 
@@ -258,9 +266,11 @@ TEST_CASE("Multiple scattering agrees with the Monte Carlo reference at random g
                                       900 + k + 10 * onNodes, onNodes);
       INFO("18 orders, " << (onNodes ? "nodes" : "random") << ", slice " << k << ": median " << c.table.median
                          << " p95 " << c.table.p95 << " (MC noise median " << c.noise.median << ", p95 "
-                         << c.noise.p95 << ", " << c.table.count << " rows)");
+                         << c.noise.p95 << ", " << c.table.count << " rows, " << c.rowsBeyond3Percent
+                         << " beyond 3% + 3 se)");
       CHECK(c.table.median <= 0.01 + 1.5 * c.noise.median);
-      CHECK(c.table.p95 <= 0.03 + 3.0 * c.noise.p95);
+      // at most 5% of the rows (rounded up) beyond 3% + their own 3σ
+      CHECK(c.rowsBeyond3Percent <= (c.table.count + 19) / 20);
     }
   // Converged against every order, at ρ = 1 (long MC walks make denser slices slow).
   const auto& rc = bakedDefault(0);
