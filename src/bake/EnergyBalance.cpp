@@ -50,8 +50,9 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
   if (!t) throw std::invalid_argument("energy balance: no scattering table given");
   if (single && multiple && single->axes()[3].size != multiple->axes()[3].size)
     throw std::invalid_argument("energy balance: the single and multiple tables have different density slices");
-  for (const Table4D* x : {single, multiple})
-    if (x) requireScatteringEncoding(*x);
+  // storage resolved (and validated) once, not per sample
+  const ScatteringStorage storage1 = single ? scatteringStorage(*single) : ScatteringStorage::Log2MeanSource;
+  const ScatteringStorage storageM = multiple ? scatteringStorage(*multiple) : ScatteringStorage::MeanSource;
   const Axis& dAx = t->axes()[3];
   const float warp1 = single ? static_cast<float>(single->axes()[0].warp) : 0.0f;
   const float warpM = multiple ? static_cast<float>(multiple->axes()[0].warp) : 0.0f;
@@ -99,12 +100,12 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
           if (single) {
             const glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, 0.0f, 1.0f, warp1);
             single->sample({x.x, x.y, x.z, wFrac}, &val);
-            b1 += static_cast<double>(scatteringFromStored(*single, val, tau)) * cosV;
+            b1 += static_cast<double>(scatteringFromStored(storage1, val, tau)) * cosV;
           }
           if (multiple) {
             const glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, 0.0f, 1.0f, warpM);
             multiple->sample({x.x, x.y, x.z, wFrac}, &val);
-            bm += static_cast<double>(scatteringFromStored(*multiple, val, tau)) * cosV;
+            bm += static_cast<double>(scatteringFromStored(storageM, val, tau)) * cosV;
           }
         }
         const double wb = kPi / nBeta * 2.0;

@@ -198,10 +198,11 @@ void printSceneReport(const BakePlan& plan, const SceneNeeds& needs, const nlohm
     const auto& d = plan.sc.dims;
     const int tables = int(plan.tables.count("single") + plan.tables.count("multiple"));
     bytes += tables * sampleBytes * double(d[0]) * d[1] * d[2] * d[3];
-    defaultBytes += tables * sampleBytes * 32.0 * 64 * 16 * 8;
+    const auto& dd = defaults::kScatteringDims;
+    defaultBytes += tables * sampleBytes * double(dd[0]) * dd[1] * dd[2] * dd[3];
     const double t = timings.value("scattering_s", 0.0);
     seconds += t;
-    defaultSeconds += t * 8.0 / d[3];  // each density slice costs about the same (the volume solve dominates)
+    defaultSeconds += t * dd[3] / d[3];  // each density slice costs about the same (the volume solve dominates)
     std::printf("  scattering: density slices log2 rho = %g..%g, %d per octave (the default: -4..3, 1 per octave)\n",
                 plan.sc.sMin, plan.sc.sMax, forScene.value("scattering_slices_per_octave", 1));
     if (forScene.contains("single_scattering_error_p95")) {

@@ -80,9 +80,8 @@ OpticalDepthChoice chooseOpticalDepthResolution(const ReferenceParticle& particl
                                                   {32, 16, 32, 16},
                                                   {48, 24, 48, 24},
                                                   {64, 32, 64, 32}}};
-  OpticalDepthChoice choice{ladder.back(), 0.0, 0};
+  OpticalDepthChoice choice{ladder.back(), 0.0};
   for (const auto& dims : ladder) {
-    ++choice.candidatesTried;
     bake::OpticalDepthSettings s;
     s.dims = dims;
     s.steps = steps;
@@ -132,40 +131,45 @@ ScatteringChoice chooseScatteringResolution(const bake::ScatteringSettings& sett
     meanBetween += r.exactBetween / static_cast<double>(rays.size());
     meanSlice += r.exactSlice / static_cast<double>(rays.size());
   }
-  // 95th percentile of the relative error of a candidate, at the slice densities or between them.
-  const auto errorOf = [&](const std::array<int, 4>& dims, bool between) {
+  // One bake of a candidate's single table; the 95th percentile of its relative error at the
+  // slice densities (first) and between them (second).
+  const auto errorsOf = [&](const std::array<int, 4>& dims) {
     bake::ScatteringSettings s = settings;
     s.dims = dims;
     s.single = true;
     s.multiple = false;
     const bake::ScatteringResult r = bake::bakeScattering(s);
-    std::vector<double> errors;
-    for (const Ray& ray : rays) {
-      const double exact = between ? ray.exactBetween : ray.exactSlice;
-      if (exact < 0.01 * (between ? meanBetween : meanSlice)) continue;
-      const double table = lookupScattering(*r.single, glm::vec3(ray.S), glm::vec3(ray.v), glm::vec3(ray.l),
-                                            static_cast<float>(between ? ray.rhoBetween : ray.rhoSlice));
-      errors.push_back(std::abs(table - exact) / exact);
-    }
-    std::sort(errors.begin(), errors.end());
-    return errors.empty() ? 0.0 : errors[static_cast<std::size_t>(0.95 * static_cast<double>(errors.size() - 1))];
+    const auto p95 = [&](bool between) {
+      std::vector<double> errors;
+      for (const Ray& ray : rays) {
+        const double exact = between ? ray.exactBetween : ray.exactSlice;
+        if (exact < 0.01 * (between ? meanBetween : meanSlice)) continue;
+        const double table = lookupScattering(*r.single, glm::vec3(ray.S), glm::vec3(ray.v), glm::vec3(ray.l),
+                                              static_cast<float>(between ? ray.rhoBetween : ray.rhoSlice));
+        errors.push_back(std::abs(table - exact) / exact);
+      }
+      std::sort(errors.begin(), errors.end());
+      return errors.empty() ? 0.0 : errors[static_cast<std::size_t>(0.95 * static_cast<double>(errors.size() - 1))];
+    };
+    return std::array<double, 2>{p95(false), p95(true)};
   };
   ScatteringChoice choice{};
   const std::array<std::array<int, 3>, 5> ladder{{{16, 32, 8}, {24, 48, 12}, {32, 64, 16}, {48, 96, 24}, {64, 128, 32}}};
   for (const auto& d : ladder) {
-    ++choice.candidatesTried;
     choice.dims = {d[0], d[1], d[2], octaves + 1};
-    choice.angularErrorP95 = errorOf(choice.dims, false);
+    choice.slicesPerOctave = 1;
+    const auto e = errorsOf(choice.dims);
+    choice.angularErrorP95 = e[0];
+    choice.errorP95 = e[1];
     if (choice.angularErrorP95 <= tolerance) break;
   }
-  for (const int perOctave : {1, 2, 4, 8}) {
+  for (const int perOctave : {2, 4, 8}) {
+    if (choice.errorP95 <= tolerance) break;
     const std::array<int, 4> dims{choice.dims[0], choice.dims[1], choice.dims[2], octaves * perOctave + 1};
-    if (perOctave > 1 && dims[2] * dims[3] > 2048) break;  // the folded depth of a GL 3D texture
-    ++choice.candidatesTried;
+    if (dims[2] * dims[3] > 2048) break;  // the folded depth of a GL 3D texture
     choice.dims = dims;
     choice.slicesPerOctave = perOctave;
-    choice.errorP95 = errorOf(dims, true);
-    if (choice.errorP95 <= tolerance) break;
+    choice.errorP95 = errorsOf(dims)[1];
   }
   return choice;
 }

@@ -29,7 +29,6 @@ std::array<int, 2> densitySlicesFor(const SceneNeeds& needs);
 struct OpticalDepthChoice {
   std::array<int, 4> dims;
   double errorP95;  // 95th percentile of |opacity error| at the scene's densities
-  int candidatesTried;
 };
 
 // The smallest optical-depth table (from a ladder of resolutions up to the default 64×32×64×32,
@@ -45,7 +44,6 @@ struct ScatteringChoice {
   int slicesPerOctave;           // density slices per doubling of ρ
   double angularErrorP95;        // single-scattering relative error at the slices' own densities
   double errorP95;               // ... at densities between the slices too (what a scene sees)
-  int candidatesTried;
 };
 
 // Scattering tables for the density range [settings.sMin, settings.sMax] (integers): the

@@ -30,17 +30,19 @@ OpticalDepthSample lookupOpticalDepth(const Table4D& table, const glm::vec3& S,
   return s;
 }
 
-void requireScatteringEncoding(const Table4D& table) {
+ScatteringStorage scatteringStorage(const Table4D& table) {
   const std::string channel = table.channelCount() ? table.channels()[0].name : std::string();
-  if (channel != kSingleScatteringChannel && channel != kMultipleScatteringChannel)
-    throw std::runtime_error("table '" + table.name() + "' is not a scattering table of this cloudlut version (channel '" +
+  if (channel == kSingleScatteringChannel) return ScatteringStorage::Log2MeanSource;
+  if (channel == kMultipleScatteringChannel) return ScatteringStorage::MeanSource;
+  throw std::runtime_error("table '" + table.name() + "' is not a scattering table of this cloudlut version (channel '" +
                              channel + "', expected '" + kSingleScatteringChannel + "' or '" +
                              kMultipleScatteringChannel + "'): re-bake it");
 }
 
-float sampleScattering(const Table4D& table, const glm::vec3& S, const glm::vec3& v,
-                       const glm::vec3& l, float rho) {
-  requireScatteringEncoding(table);
+namespace {
+
+// The stored value at the geometry, for a table whose storage is known to be valid.
+float sampleStored(const Table4D& table, const glm::vec3& S, const glm::vec3& v, const glm::vec3& l, float rho) {
   const Axis& d = table.axes()[3];
   const glm::vec4 x = glsl::scatteringAxes(S, v, l, rho, static_cast<float>(d.min), static_cast<float>(d.max),
                                            static_cast<float>(table.axes()[0].warp));
@@ -49,16 +51,24 @@ float sampleScattering(const Table4D& table, const glm::vec3& S, const glm::vec3
   return value;
 }
 
-float scatteringFromStored(const Table4D& table, float stored, float tau) {
-  return table.channels()[0].name == kSingleScatteringChannel ? glsl::singleScatteringFromTable(stored, tau)
-                                                              : glsl::multipleScatteringFromTable(stored, tau);
+}  // namespace
+
+float sampleScattering(const Table4D& table, const glm::vec3& S, const glm::vec3& v,
+                       const glm::vec3& l, float rho) {
+  scatteringStorage(table);  // validates
+  return sampleStored(table, S, v, l, rho);
+}
+
+float scatteringFromStored(ScatteringStorage storage, float stored, float tau) {
+  return storage == ScatteringStorage::Log2MeanSource ? glsl::singleScatteringFromTable(stored, tau)
+                                                      : glsl::multipleScatteringFromTable(stored, tau);
 }
 
 float lookupScattering(const Table4D& table, const glm::vec3& S, const glm::vec3& v,
                        const glm::vec3& l, float rho) {
-  const float stored = sampleScattering(table, S, v, l, rho);
+  const ScatteringStorage storage = scatteringStorage(table);
   const float tau = unitOpticalRadius(table) * rho * glsl::chordLength(glm::normalize(S), v);
-  return scatteringFromStored(table, stored, tau);
+  return scatteringFromStored(storage, sampleStored(table, S, v, l, rho), tau);
 }
 
 }  // namespace cloudlut

@@ -27,9 +27,12 @@ OpticalDepthSample lookupOpticalDepth(const Table4D& table, const glm::vec3& S,
 inline constexpr const char* kSingleScatteringChannel = "log2_mean_source";
 inline constexpr const char* kMultipleScatteringChannel = "mean_source";
 
-// Throws std::runtime_error naming the table unless it is a scattering table in this encoding
-// (tables of older cloudlut versions stored radiance: re-bake them).
-void requireScatteringEncoding(const Table4D& table);
+// How a scattering table stores its values, from its channel name.
+enum class ScatteringStorage { Log2MeanSource, MeanSource };
+
+// The storage of a scattering table; throws std::runtime_error naming the table unless it is a
+// scattering table of this cloudlut version (older versions stored radiance: re-bake them).
+ScatteringStorage scatteringStorage(const Table4D& table);
 
 // The stored value (channel 0) of a scattering table (θS, φv, θv, log2 ρ) at the
 // geometry (S, v, l) and density rho; rho outside the table's range is clamped to it.
@@ -37,14 +40,14 @@ float sampleScattering(const Table4D& table, const glm::vec3& S, const glm::vec3
                        const glm::vec3& l, float rho);
 
 // Radiance per unit sun irradiance (sr⁻¹) of the tables' homogeneous sphere of density rho
-// along the chord entering at S along v: scatteringFromStored(table, sampleScattering(...), ρσ·chord).
+// along the chord entering at S along v: scatteringFromStored(storage, sampleScattering(...), ρσ·chord).
 // For the single-scattering table this is L1, without the phase function.
 float lookupScattering(const Table4D& table, const glm::vec3& S, const glm::vec3& v,
                        const glm::vec3& l, float rho);
 
 // Radiance (sr⁻¹ per unit sun irradiance) of a chord of optical depth tau from a scattering
-// table's stored value, decoded as its channel says (single/multipleScatteringFromTable).
-float scatteringFromStored(const Table4D& table, float stored, float tau);
+// table's stored value, decoded as its storage says (single/multipleScatteringFromTable).
+float scatteringFromStored(ScatteringStorage storage, float stored, float tau);
 
 // σ = extinction·radius of a table's parameters: the optical radius of a particle of ρ = 1.
 float unitOpticalRadius(const Table4D& table);

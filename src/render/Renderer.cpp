@@ -170,14 +170,15 @@ struct Renderer::Impl {
     const Table4D& od = requireTable(set, "optical_depth");
     const Table4D& l1 = requireTable(set, "single_scattering");
     const Table4D& lm = requireTable(set, "multiple_scattering");
-    for (const Table4D* t : {&l1, &lm}) {
-      try {
-        requireScatteringEncoding(*t);
-      } catch (const std::runtime_error& e) {
-        throw FileError(luts, e.what());
-      }
+    // the shader decodes single_scattering as log2 and multiple_scattering as linear mean sources
+    ScatteringStorage storage1, storageM;
+    try {
+      storage1 = scatteringStorage(l1);
+      storageM = scatteringStorage(lm);
+    } catch (const std::runtime_error& e) {
+      throw FileError(luts, e.what());
     }
-    if (l1.channels()[0].name != kSingleScatteringChannel || lm.channels()[0].name != kMultipleScatteringChannel)
+    if (storage1 != ScatteringStorage::Log2MeanSource || storageM != ScatteringStorage::MeanSource)
       throw FileError(luts, std::string("single_scattering must store '") + kSingleScatteringChannel +
                                 "' and multiple_scattering '" + kMultipleScatteringChannel + "'");
     unitOpticalRadius = cloudlut::unitOpticalRadius(od);
