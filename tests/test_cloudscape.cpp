@@ -16,14 +16,15 @@
 #include "CliRunner.h"
 #include "core/Errors.h"
 #include "core/TableLookup.h"
-#include "render/Cloudscape.h"
-#include "render/CloudscapeGrid.h"
+#include "scene/Cloudscape.h"
+#include "scene/CloudscapeGrid.h"
 #include "render/GlContext.h"
 #include "render/Renderer.h"
 #include "test_render_support.h"
 
 using namespace cloudlut;
 using namespace cloudlut::render;
+using namespace cloudlut::scene;
 using namespace cloudlut::test;
 
 namespace {

@@ -13,6 +13,7 @@
 
 using namespace cloudlut;
 using namespace cloudlut::render;
+using namespace cloudlut::scene;
 
 namespace {
 

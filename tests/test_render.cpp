@@ -14,11 +14,12 @@
 #include "core/TableLookup.h"
 #include "render/GlContext.h"
 #include "render/Renderer.h"
-#include "render/Scene.h"
+#include "scene/Scene.h"
 #include "test_render_support.h"
 
 using namespace cloudlut;
 using namespace cloudlut::render;
+using namespace cloudlut::scene;
 using namespace cloudlut::test;
 
 namespace {

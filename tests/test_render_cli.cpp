@@ -19,7 +19,7 @@
 #include "core/Glsl.h"
 #include "core/Errors.h"
 #include "core/TableLookup.h"
-#include "render/Scene.h"
+#include "scene/Scene.h"
 #include "test_render_support.h"
 
 using namespace cloudlut;
@@ -143,14 +143,14 @@ TEST_CASE("render CLI: PNG and EXR output of the small scene", "[render][cli]") 
 }
 
 TEST_CASE("render: the command line overrides the scene file, which overrides the defaults", "[render]") {
-  render::Scene scene = render::parseScene(nlohmann::json::parse(R"({
+  scene::Scene scene = scene::parseScene(nlohmann::json::parse(R"({
       "camera": {"eye": [0, 0, 10], "fov_deg": 30},
       "sun": {"direction": [0, 2, 0]},
       "particles": [{"center": [1, 2, 3], "radii": 1}]})"), "inline");
-  render::ViewSettings cli;
+  scene::ViewSettings cli;
   cli.fovDeg = 60.0f;
   cli.skyColor = glm::vec3(0.5f);
-  const render::View view = render::resolveView(scene, cli);
+  const scene::View view = scene::resolveView(scene, cli);
   CHECK(view.camera.eye == glm::vec3(0, 0, 10));
   CHECK(view.camera.target == glm::vec3(1, 2, 3));  // default: the particles' centre
   CHECK(view.camera.fovDeg == 60.0f);
@@ -158,7 +158,7 @@ TEST_CASE("render: the command line overrides the scene file, which overrides th
   CHECK(view.lighting.skyColor == glm::vec3(0.5f));
   CHECK(view.lighting.sunColor == glm::vec3(1.0f));
   cli.eye = glm::vec3(1, 2, 3);
-  CHECK_THROWS_AS(render::resolveView(scene, cli), UsageError);
+  CHECK_THROWS_AS(scene::resolveView(scene, cli), UsageError);
 }
 
 TEST_CASE("render CLI: missing or corrupt tables are file errors naming the file", "[render][cli]") {
@@ -324,10 +324,10 @@ TEST_CASE("render CLI: pixels of one particle reproduce `cloudlut query` for the
   int w = 0, h = 0;
   const auto px = readExrChannels(tmp / "one.exr", {"R", "A"}, w, h);
 
-  const render::Scene scene = render::readScene(tmp / "one.json");
-  const render::View view = render::resolveView(scene, {});
-  const render::Particle& p = scene.particles[0];
-  const render::CameraFrame camera(view.camera, w, h);
+  const scene::Scene scene = scene::readScene(tmp / "one.json");
+  const scene::View view = scene::resolveView(scene, {});
+  const scene::Particle& p = scene.particles[0];
+  const scene::CameraFrame camera(view.camera, w, h);
   const glm::vec3 l = glm::normalize(p.toParticle() * view.lighting.sunDirection);
   const io::LutSet luts = io::readLutSet(tmp / "luts");
   const Table4D& od = luts.tables.at("optical_depth").table;

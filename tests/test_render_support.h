@@ -18,7 +18,7 @@
 #include "core/Table4D.h"
 #include "core/TableLookup.h"
 #include "io/LutIo.h"
-#include "render/Scene.h"
+#include "scene/Scene.h"
 
 namespace cloudlut::test {
 
@@ -103,7 +103,7 @@ struct Hit {
 };
 
 // The ray (eye, unit dir) against the particle, scaled by `inflate`, in its unit-sphere space.
-inline Hit intersect(const render::Particle& p, const glm::vec3& eye, const glm::vec3& dir, float inflate = 1.0f) {
+inline Hit intersect(const scene::Particle& p, const glm::vec3& eye, const glm::vec3& dir, float inflate = 1.0f) {
   const glm::mat3 inv = p.toParticle();
   const glm::vec3 o = inv * (eye - p.center) / inflate, d = inv * dir / inflate;
   const double a = glm::dot(d, d), b = glm::dot(o, d), c = double(glm::dot(o, o)) - 1.0;

@@ -178,8 +178,8 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
   for (int si = 0; si < sceneCount; ++si) {
     const std::string name = kScenes[si];
     const fs::path sceneFile = sceneDir / (name + ".json");
-    const render::Scene scene = render::readScene(sceneFile);
-    const render::View view = render::resolveView(scene, {});
+    const scene::Scene scene = scene::readScene(sceneFile);
+    const scene::View view = scene::resolveView(scene, {});
 
     // The reference, cached by a hash of everything it depends on.
     reference::ScenePtSettings st;

@@ -56,9 +56,9 @@ int runReferenceScene(int argc, char** argv) {
   if (threadCount < 0) throw UsageError("--threads must be 0 (all cores) or positive");
   const auto threads = limitThreads(threadCount);
   const MediumSpec medium = parseMedium(args);
-  const render::ViewSettings overrides = parseViewOverrides(args);
-  const render::Scene scene = render::readScene(args["particles"].as<std::string>());
-  const render::View view = render::resolveView(scene, overrides);
+  const scene::ViewSettings overrides = parseViewOverrides(args);
+  const scene::Scene scene = scene::readScene(args["particles"].as<std::string>());
+  const scene::View view = scene::resolveView(scene, overrides);
 
   const bool quiet = args.count("quiet") > 0;
   ReferenceSceneStats stats;

@@ -15,7 +15,7 @@
 #include "core/Glsl.h"
 #include "core/ReferenceParticle.h"
 #include "core/TableLookup.h"
-#include "render/Cloudscape.h"
+#include "scene/Cloudscape.h"
 #include "render/GlContext.h"
 #include "render/Renderer.h"
 
@@ -86,15 +86,15 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
   const io::LutSet luts = benchLuts();
   const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
   render::Renderer renderer(*context, luts);
-  const render::CloudscapeScene scene = render::loadCloudscape(render::kDefaultCloudscape);
-  render::Scene empty;
+  const scene::CloudscapeScene scene = scene::loadCloudscape(scene::kDefaultCloudscape);
+  scene::Scene empty;
   empty.view = scene.view;
-  const render::View view = render::resolveView(empty, {});
-  const auto& qualities = render::qualityPresetNames();
+  const scene::View view = scene::resolveView(empty, {});
+  const auto& qualities = scene::qualityPresetNames();
   int step = 0;
   const int steps = static_cast<int>(qualities.size()) * 2;
   for (const std::string& qname : qualities) {
-    const render::QualityPreset q = render::qualityPreset(qname);
+    const scene::QualityPreset q = scene::qualityPreset(qname);
     for (render::BlendMode blend : {render::BlendMode::Alpha, render::BlendMode::Volume}) {
       reportProgress(options.progress, "bench: render", static_cast<double>(step++) / steps);
       render::RenderSettings s;
@@ -141,7 +141,7 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
       render::Image previous;
       for (int f = 0; f < frames; ++f) {
         render::RenderSettings m = s;
-        m.view.camera = render::cameraOnPath(view.camera, f, 15.0f, 0.05f);
+        m.view.camera = scene::cameraOnPath(view.camera, f, 15.0f, 0.05f);
         render::Image image = renderer.renderCloudscape(scene.cloud, q, m);
         if (f > 0) {
           const ErrorStats e = frameChange(previous, image, view.lighting.skyColor);

@@ -20,7 +20,7 @@
 #include "render/GlContext.h"
 #include "render/ImageWriters.h"
 #include "render/Renderer.h"
-#include "render/Scene.h"
+#include "scene/Scene.h"
 
 namespace cloudlut::cli {
 namespace {
@@ -82,7 +82,7 @@ int runRender(int argc, char** argv) {
   render::checkImageSize(width, height);
   const double exposure = requirePositive(args["exposure"].as<double>(), "exposure");
 
-  const render::ViewSettings overrides = parseViewOverrides(args);
+  const scene::ViewSettings overrides = parseViewOverrides(args);
 
   render::RenderSettings settings;
   settings.width = static_cast<int>(width);
@@ -101,30 +101,30 @@ int runRender(int argc, char** argv) {
   if (frames < 1 || frames > 100000) throw UsageError("--frames: expected 1 to 100000");
   const double speed = args["speed"].as<double>(), yaw = args["yaw"].as<double>();
   if (!std::isfinite(speed) || !std::isfinite(yaw)) throw UsageError("--speed/--yaw: expected finite numbers");
-  const render::QualityPreset quality = render::qualityPreset(args["quality"].as<std::string>());
+  const scene::QualityPreset quality = scene::qualityPreset(args["quality"].as<std::string>());
 
   // The scene: explicit particles, or a cloudscape preset / file (the default one embedded).
-  render::Scene scene;
-  render::CloudscapeScene cloudscape;
+  scene::Scene scene;
+  scene::CloudscapeScene cloudscape;
   if (particles) {
-    scene = render::readScene(args["particles"].as<std::string>());
+    scene = scene::readScene(args["particles"].as<std::string>());
   } else {
-    cloudscape = render::loadCloudscape(args.count("scene") ? args["scene"].as<std::string>()
-                                                            : std::string(render::kDefaultCloudscape));
+    cloudscape = scene::loadCloudscape(args.count("scene") ? args["scene"].as<std::string>()
+                                                            : std::string(scene::kDefaultCloudscape));
     scene.view = cloudscape.view;
     if (!scene.view.target && !overrides.target) scene.view.target = glm::vec3(0.0f, 1500.0f, -6000.0f);
     if (!scene.view.eye && !overrides.eye) scene.view.eye = glm::vec3(0.0f, 600.0f, 0.0f);
   }
-  settings.view = render::resolveView(scene, overrides);
+  settings.view = scene::resolveView(scene, overrides);
   const io::LutSet luts = io::readLutSet(args["luts"].as<std::string>());
 
   const auto t0 = std::chrono::steady_clock::now();
   const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
   render::Renderer renderer(*context, luts);
   const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const render::Camera start = settings.view.camera;
+  const scene::Camera start = settings.view.camera;
   for (int frame = 0; frame < frames; ++frame) {
-    settings.view.camera = render::cameraOnPath(start, frame, static_cast<float>(speed), static_cast<float>(yaw));
+    settings.view.camera = scene::cameraOnPath(start, frame, static_cast<float>(speed), static_cast<float>(yaw));
     render::RenderStats stats;
     const render::Image image = particles ? renderer.render(scene.particles, settings, &stats)
                                           : renderer.renderCloudscape(cloudscape.cloud, quality, settings, &stats);

@@ -49,8 +49,8 @@ void addViewOptions(cxxopts::Options& options) {
     ("sky-color", "sky radiance r,g,b (overrides the scene; 0,0,0 = no sky)", cxxopts::value<std::string>());
 }
 
-render::ViewSettings parseViewOverrides(const cxxopts::ParseResult& args) {
-  render::ViewSettings o;
+scene::ViewSettings parseViewOverrides(const cxxopts::ParseResult& args) {
+  scene::ViewSettings o;
   if (args.count("eye")) o.eye = parseVec3Option(args["eye"].as<std::string>(), "eye", false);
   if (args.count("target")) o.target = parseVec3Option(args["target"].as<std::string>(), "target", false);
   if (args.count("up")) o.up = parseVec3Option(args["up"].as<std::string>(), "up", false);
@@ -225,9 +225,9 @@ int runRayMarchRender(const cxxopts::ParseResult& args) {
   s.first = {medium.first.kind, medium.first.param};
   s.later = {medium.later.kind, medium.later.param};
   s.unitOpticalRadius = static_cast<float>(medium.unitOpticalRadius());
-  const render::ViewSettings overrides = parseViewOverrides(args);
-  const render::Scene scene = render::readScene(args["particles"].as<std::string>());
-  s.view = render::resolveView(scene, overrides);
+  const scene::ViewSettings overrides = parseViewOverrides(args);
+  const scene::Scene scene = scene::readScene(args["particles"].as<std::string>());
+  s.view = scene::resolveView(scene, overrides);
 
   const auto t0 = std::chrono::steady_clock::now();
   const ReferenceParticle particle(medium.model, medium.seed);
@@ -247,21 +247,21 @@ int runRayMarchRender(const cxxopts::ParseResult& args) {
   return kExitOk;
 }
 
-io::ExrImage renderReferenceScene(const std::vector<render::Particle>& particles, const render::View& view,
+io::ExrImage renderReferenceScene(const std::vector<scene::Particle>& particles, const scene::View& view,
                                   const MediumSpec& medium, const reference::ScenePtSettings& settings, int width,
                                   int height, const ProgressFn& progress, ReferenceSceneStats* stats) {
   const ReferenceParticle model(medium.model, medium.seed);
   reference::SceneMedium m;
   m.model = &model;
   m.unitOpticalRadius = medium.unitOpticalRadius();
-  for (const render::Particle& p : particles)
+  for (const scene::Particle& p : particles)
     m.particles.push_back({glm::dvec3(p.center), glm::dmat3(p.toParticle()), static_cast<double>(p.density)});
   reference::SceneLight light;
   light.sunDirection = glm::normalize(glm::dvec3(view.lighting.sunDirection));
   reference::ScenePtSettings st = settings;
   st.first = medium.first;
   st.later = medium.later;
-  const render::CameraFrame camera(view.camera, width, height);
+  const scene::CameraFrame camera(view.camera, width, height);
   const glm::dvec3 eye(camera.eye());
   const auto ray = [&](double px, double py, glm::dvec3& o, glm::dvec3& d) {
     o = eye;

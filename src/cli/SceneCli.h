@@ -13,13 +13,13 @@
 #include "io/ExrImage.h"
 #include "reference/ScenePathTracer.h"
 #include "reference/SphereMonteCarlo.h"
-#include "render/Scene.h"
+#include "scene/Scene.h"
 
 namespace cloudlut::cli {
 
 // --eye, --target, --up, --fov, --sun, --sun-color, --sky-color.
 void addViewOptions(cxxopts::Options& options);
-render::ViewSettings parseViewOverrides(const cxxopts::ParseResult& args);
+scene::ViewSettings parseViewOverrides(const cxxopts::ParseResult& args);
 
 // The medium: density model and seed of the reference particle, β and R, the phase functions.
 struct MediumSpec {
@@ -65,7 +65,7 @@ struct ReferenceSceneStats {
   double seconds = 0;
   double meanVertices = 0;
 };
-io::ExrImage renderReferenceScene(const std::vector<render::Particle>& particles, const render::View& view,
+io::ExrImage renderReferenceScene(const std::vector<scene::Particle>& particles, const scene::View& view,
                                   const MediumSpec& medium, const reference::ScenePtSettings& settings, int width,
                                   int height, const ProgressFn& progress = {}, ReferenceSceneStats* stats = nullptr);
 

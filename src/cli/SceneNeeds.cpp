@@ -15,8 +15,8 @@
 #include "core/Errors.h"
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
-#include "render/Cloudscape.h"
-#include "render/Scene.h"
+#include "scene/Cloudscape.h"
+#include "scene/Scene.h"
 
 namespace cloudlut::cli {
 
@@ -28,10 +28,10 @@ SceneNeeds readSceneNeeds(const std::string& fileOrPreset, const std::string& qu
     std::ifstream in(fileOrPreset);
     const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
     if (doc.is_discarded()) throw FileError(fileOrPreset, "not valid JSON");
-    particleScene = !render::isCloudscapeDocument(doc);
+    particleScene = !scene::isCloudscapeDocument(doc);
   }
   if (particleScene) {
-    const render::Scene scene = render::readScene(fileOrPreset);
+    const scene::Scene scene = scene::readScene(fileOrPreset);
     if (scene.particles.empty()) throw FileError(fileOrPreset, "the scene has no particles: nothing to bake for");
     needs.kind = "particles";
     needs.particles = scene.particles.size();
@@ -41,8 +41,8 @@ SceneNeeds readSceneNeeds(const std::string& fileOrPreset, const std::string& qu
       needs.rhoMax = std::max(needs.rhoMax, p.density);
     }
   } else {
-    const render::CloudscapeScene scene = render::loadCloudscape(fileOrPreset);
-    const glm::vec2 range = render::cloudscapeDensityRange(scene.cloud, render::qualityPreset(quality));
+    const scene::CloudscapeScene scene = scene::loadCloudscape(fileOrPreset);
+    const glm::vec2 range = scene::cloudscapeDensityRange(scene.cloud, scene::qualityPreset(quality));
     needs.kind = "cloudscape";
     needs.rhoMin = range.x;
     needs.rhoMax = range.y;

@@ -77,7 +77,7 @@ struct RayMarchRenderer::Impl {
     program = linkProgram(gl, {vs, fs}, "ray-march program");
   }
 
-  Image render(const std::vector<Particle>& particles, const RayMarchSettings& s, RenderStats* stats) {
+  Image render(const std::vector<scene::Particle>& particles, const RayMarchSettings& s, RenderStats* stats) {
     checkImageSize(s.width, s.height);
     if (s.steps < 1 || s.steps > 4096) throw UsageError("--steps must lie in [1, 4096]");
     if (s.shadowSteps < 1 || s.shadowSteps > 256) throw UsageError("--shadow-steps must lie in [1, 256]");
@@ -91,7 +91,7 @@ struct RayMarchRenderer::Impl {
     if (particles.size() > static_cast<std::size_t>(maxStorage) / sizeof(GpuRmParticle))
       throw UsageError(std::to_string(particles.size()) + " particles exceed this OpenGL's shader storage limit");
 
-    const CameraFrame camera(s.view.camera, s.width, s.height);
+    const scene::CameraFrame camera(s.view.camera, s.width, s.height);
     const glm::vec3 eye = camera.eye(), forward = camera.forward();
     const glm::vec3 sun = glm::normalize(s.view.lighting.sunDirection);
     // The pinhole ray is affine in the pixel coordinates once scaled to unit depth.
@@ -106,7 +106,7 @@ struct RayMarchRenderer::Impl {
     const auto t0 = Clock::now();
     std::vector<GpuRmParticle> records(particles.size());
     for (std::size_t k = 0; k < particles.size(); ++k) {
-      const Particle& p = particles[k];
+      const scene::Particle& p = particles[k];
       const glm::mat3 inv = p.toParticle();
       GpuRmParticle& r = records[k];
       r.centerDensity[0] = p.center.x;
@@ -139,7 +139,7 @@ struct RayMarchRenderer::Impl {
     uniforms.set("uRayDx", rdx);
     uniforms.set("uRayDy", rdy);
     uniforms.set("uHeight", static_cast<float>(s.height));
-    const Lighting& light = s.view.lighting;
+    const scene::Lighting& light = s.view.lighting;
     uniforms.set("uSun", sun);
     uniforms.set("uSunColor", light.sunColor);
     uniforms.set("uSkyColor", light.skyColor);
@@ -180,7 +180,7 @@ struct RayMarchRenderer::Impl {
 RayMarchRenderer::RayMarchRenderer(GlContext& context, const ReferenceParticle& model)
     : impl_(std::make_unique<Impl>(context, model)) {}
 RayMarchRenderer::~RayMarchRenderer() = default;
-Image RayMarchRenderer::render(const std::vector<Particle>& particles, const RayMarchSettings& settings,
+Image RayMarchRenderer::render(const std::vector<scene::Particle>& particles, const RayMarchSettings& settings,
                                RenderStats* stats) {
   return impl_->render(particles, settings, stats);
 }

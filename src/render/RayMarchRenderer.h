@@ -30,7 +30,7 @@
 #include "core/ReferenceParticle.h"
 #include "render/GlContext.h"
 #include "render/Renderer.h"
-#include "render/Scene.h"
+#include "scene/Scene.h"
 
 namespace cloudlut::render {
 
@@ -42,7 +42,7 @@ struct RayMarchPhase {
 struct RayMarchSettings {
   int width = 640;
   int height = 360;
-  View view;
+  scene::View view;
   unsigned terms = kAllTerms;      // single = octave 0, multiple = octaves ≥ 1, ambient
   int steps = 64;                  // view-ray steps (1 … 4096)
   bool adaptive = false;           // skip empty space, steps spread over the occupied length
@@ -65,7 +65,7 @@ class RayMarchRenderer {
   RayMarchRenderer& operator=(const RayMarchRenderer&) = delete;
 
   // UsageError for settings outside the ranges above.
-  Image render(const std::vector<Particle>& particles, const RayMarchSettings& settings,
+  Image render(const std::vector<scene::Particle>& particles, const RayMarchSettings& settings,
                RenderStats* stats = nullptr);
 
  private:

@@ -14,7 +14,7 @@
 
 #include "core/Errors.h"
 #include "core/TableLookup.h"
-#include "render/CloudscapeGrid.h"
+#include "scene/CloudscapeGrid.h"
 #include "render/GlFunctions.h"
 #include "render/GlResources.h"
 #include "render/ShaderSources.h"
@@ -135,7 +135,7 @@ void checkImageSize(long long width, long long height) {
                      " MiB this machine can spare");
 }
 
-std::vector<std::size_t> backToFrontOrder(const std::vector<Particle>& particles, const glm::vec3& eye) {
+std::vector<std::size_t> backToFrontOrder(const std::vector<scene::Particle>& particles, const glm::vec3& eye) {
   std::vector<float> distance(particles.size());
   for (std::size_t i = 0; i < particles.size(); ++i) distance[i] = glm::length(particles[i].center - eye);
   std::vector<std::size_t> order(particles.size());
@@ -310,7 +310,7 @@ struct Renderer::Impl {
 
   // ---- explicit particles -------------------------------------------------------------------
   // Uploads the particles (in `order`) as records; returns the far plane that holds them all.
-  float uploadParticles(const std::vector<Particle>& particles, const std::vector<std::size_t>& order,
+  float uploadParticles(const std::vector<scene::Particle>& particles, const std::vector<std::size_t>& order,
                         const glm::vec3& eye) {
     const auto maxParticles = static_cast<std::size_t>(maxStorage) / sizeof(GpuParticle);
     if (particles.size() > maxParticles)
@@ -319,7 +319,7 @@ struct Renderer::Impl {
     std::vector<GpuParticle> records(order.size());
     float farthest = 0.0f;
     for (std::size_t k = 0; k < order.size(); ++k) {
-      const Particle& p = particles[order[k]];
+      const scene::Particle& p = particles[order[k]];
       const glm::mat3 w = p.toWorld(), inv = p.toParticle();
       GpuParticle& r = records[k];
       r.centerDensity[0] = p.center.x;
@@ -350,8 +350,8 @@ struct Renderer::Impl {
     float farPlane = 1.0f;
   };
 
-  Generated generate(const CloudType& cloud, const QualityPreset& q, const RenderSettings& s, bool sortKeys) {
-    const GridParameters g = gridParameters(cloud, q);
+  Generated generate(const scene::CloudType& cloud, const scene::QualityPreset& q, const RenderSettings& s, bool sortKeys) {
+    const scene::GridParameters g = scene::gridParameters(cloud, q);
     const std::size_t capacity = static_cast<std::size_t>(q.maxParticles());
     std::size_t pow2 = 1;
     while (pow2 < capacity) pow2 <<= 1;
@@ -378,7 +378,7 @@ struct Renderer::Impl {
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, keysBuffer);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, genBuffer);
-    const Frustum fr = cameraFrustum(s.view.camera, s.width, s.height);
+    const scene::Frustum fr = scene::cameraFrustum(s.view.camera, s.width, s.height);
     const glm::vec3 eye = s.view.camera.eye;
     for (int stage = 0; stage < 3; ++stage) {
       const GLuint p = generatePrograms[stage];
@@ -407,7 +407,7 @@ struct Renderer::Impl {
     Generated out;
     out.cells = counts[0];
     out.count = std::min<std::size_t>(counts[1], capacity);
-    const glm::vec2 maxR = grid::cgMaxRadii(q.rings - 1, g.g0, g.g1, g.g2);
+    const glm::vec2 maxR = scene::grid::cgMaxRadii(q.rings - 1, g.g0, g.g1, g.g2);
     out.farPlane = g.g3.y + 2.0f * std::max(maxR.x, maxR.y) + 1.0f;
 
     if (sortKeys && out.count > 1) {
@@ -534,13 +534,13 @@ struct Renderer::Impl {
 
     gl.UseProgram(program);
     const ProgramUniforms uniforms(gl, program);
-    Camera camera = s.view.camera;
-    const CameraFrame frame(camera, w, h);
+    scene::Camera camera = s.view.camera;
+    const scene::CameraFrame frame(camera, w, h);
     const glm::vec3 eye = frame.eye();
     const float nearPlane = farPlane * 1e-6f;
     const glm::mat4 viewProjection = frame.projectionMatrix(nearPlane, farPlane) * frame.viewMatrix();
     uniforms.set("uViewProjection", viewProjection);
-    const Lighting& light = s.view.lighting;
+    const scene::Lighting& light = s.view.lighting;
     uniforms.set("uEye", eye);
     const glm::vec3 sun = glm::normalize(light.sunDirection);
     uniforms.set("uSunDirection", sun);
@@ -627,7 +627,7 @@ struct Renderer::Impl {
     context.makeCurrent();
   }
 
-  Image render(const std::vector<Particle>& particles, const RenderSettings& s, RenderStats* stats) {
+  Image render(const std::vector<scene::Particle>& particles, const RenderSettings& s, RenderStats* stats) {
     validate(s);
     const glm::vec3 eye = s.view.camera.eye;
     const auto t0 = Clock::now();
@@ -647,7 +647,7 @@ struct Renderer::Impl {
     return draw(particles.size(), false, farPlane, s, stats);
   }
 
-  Image renderCloudscape(const CloudType& cloud, const QualityPreset& q, const RenderSettings& s, RenderStats* stats) {
+  Image renderCloudscape(const scene::CloudType& cloud, const scene::QualityPreset& q, const RenderSettings& s, RenderStats* stats) {
     validate(s);
     const auto t0 = Clock::now();
     const bool alpha = s.blend == BlendMode::Alpha;
@@ -674,13 +674,13 @@ struct Renderer::Impl {
     return records;
   }
 
-  CpuGeneration generateOnGpu(const CloudType& cloud, const QualityPreset& q, const RenderSettings& s) {
+  scene::CpuGeneration generateOnGpu(const scene::CloudType& cloud, const scene::QualityPreset& q, const RenderSettings& s) {
     validate(s);
     const Generated g = generate(cloud, q, s, false);
-    CpuGeneration out;
+    scene::CpuGeneration out;
     out.validCells = g.cells;
     for (const GpuParticle& r : readParticles(g.count)) {
-      GridParticle gp;
+      scene::GridParticle gp;
       gp.particle.center = {r.centerDensity[0], r.centerDensity[1], r.centerDensity[2]};
       gp.particle.density = r.centerDensity[3];
       const glm::vec3 c0(r.toWorld[0][0], r.toWorld[0][1], r.toWorld[0][2]);
@@ -700,7 +700,7 @@ struct Renderer::Impl {
     return out;
   }
 
-  std::vector<float> sunlight(const std::vector<Particle>& particles, const RenderSettings& s) {
+  std::vector<float> sunlight(const std::vector<scene::Particle>& particles, const RenderSettings& s) {
     validate(s);
     std::vector<std::size_t> order(particles.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
@@ -717,22 +717,22 @@ Renderer::Renderer(GlContext& context, const io::LutSet& luts)
 
 Renderer::~Renderer() = default;
 
-Image Renderer::render(const std::vector<Particle>& particles, const RenderSettings& settings,
+Image Renderer::render(const std::vector<scene::Particle>& particles, const RenderSettings& settings,
                        RenderStats* stats) {
   return impl_->render(particles, settings, stats);
 }
 
-Image Renderer::renderCloudscape(const CloudType& cloud, const QualityPreset& quality, const RenderSettings& settings,
+Image Renderer::renderCloudscape(const scene::CloudType& cloud, const scene::QualityPreset& quality, const RenderSettings& settings,
                                  RenderStats* stats) {
   return impl_->renderCloudscape(cloud, quality, settings, stats);
 }
 
-CpuGeneration Renderer::generateOnGpu(const CloudType& cloud, const QualityPreset& quality,
+scene::CpuGeneration Renderer::generateOnGpu(const scene::CloudType& cloud, const scene::QualityPreset& quality,
                                       const RenderSettings& settings) {
   return impl_->generateOnGpu(cloud, quality, settings);
 }
 
-std::vector<float> Renderer::sunlight(const std::vector<Particle>& particles, const RenderSettings& settings) {
+std::vector<float> Renderer::sunlight(const std::vector<scene::Particle>& particles, const RenderSettings& settings) {
   return impl_->sunlight(particles, settings);
 }
 

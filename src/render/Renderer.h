@@ -35,9 +35,9 @@
 #include <vector>
 
 #include "io/LutIo.h"
-#include "render/Cloudscape.h"
+#include "scene/Cloudscape.h"
 #include "render/GlContext.h"
-#include "render/Scene.h"
+#include "scene/Scene.h"
 
 namespace cloudlut::render {
 
@@ -62,7 +62,7 @@ const char* toString(BlendMode mode);
 struct RenderSettings {
   int width = 640;
   int height = 360;
-  View view;
+  scene::View view;
   unsigned terms = kAllTerms;
   BlendMode blend = BlendMode::Alpha;
   int downscale = 1;            // particles rendered at 1/downscale resolution (1, 2 or 4), then upscaled
@@ -120,18 +120,18 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  Image render(const std::vector<Particle>& particles, const RenderSettings& settings,
+  Image render(const std::vector<scene::Particle>& particles, const RenderSettings& settings,
                RenderStats* stats = nullptr);
 
   // A procedural cloudscape, generated on the GPU for the settings' camera.
-  Image renderCloudscape(const CloudType& cloud, const QualityPreset& quality, const RenderSettings& settings,
+  Image renderCloudscape(const scene::CloudType& cloud, const scene::QualityPreset& quality, const RenderSettings& settings,
                          RenderStats* stats = nullptr);
 
   // The GPU generation alone, read back (for tests against generateCloudscapeCpu).
-  CpuGeneration generateOnGpu(const CloudType& cloud, const QualityPreset& quality, const RenderSettings& settings);
+  scene::CpuGeneration generateOnGpu(const scene::CloudType& cloud, const scene::QualityPreset& quality, const RenderSettings& settings);
 
   // Sunlight reaching each particle after the occlusion pass (same order as `particles`).
-  std::vector<float> sunlight(const std::vector<Particle>& particles, const RenderSettings& settings);
+  std::vector<float> sunlight(const std::vector<scene::Particle>& particles, const RenderSettings& settings);
 
  private:
   struct Impl;
@@ -140,6 +140,6 @@ class Renderer {
 
 // Particles sorted back to front: decreasing distance from `eye` to the centre (ties keep
 // their order). Returns indices into `particles`.
-std::vector<std::size_t> backToFrontOrder(const std::vector<Particle>& particles, const glm::vec3& eye);
+std::vector<std::size_t> backToFrontOrder(const std::vector<scene::Particle>& particles, const glm::vec3& eye);
 
 }  // namespace cloudlut::render

@@ -30,7 +30,7 @@ std::string assemble(const std::vector<std::string>& files, const std::string& d
 const std::string& embeddedShaderFile(const std::string& name) {
   static const std::map<std::string, std::string> files = [] {
     std::map<std::string, std::string> m;
-    for (const auto& f : embedded::kShaderFiles) m.emplace(f.name, f.source);
+    for (const auto& f : embedded::kEmbeddedFiles) m.emplace(f.name, f.text);
     return m;
   }();
   const auto it = files.find(name);

@@ -1,7 +1,7 @@
 #pragma once
-// The renderer's GLSL, embedded in the binary at build time (EmbedShaders.cmake): the shared
-// lut_formats/glsl files verbatim plus src/render/shaders (and the cloudscape presets,
-// data/presets/*.json, which ride along in the same table).
+// The renderer's GLSL, embedded in the binary at build time (cmake/EmbedFiles.cmake): the shared
+// lut_formats/glsl files verbatim, the clipmap grid functions of src/scene/glsl and
+// src/render/shaders.
 #include <string>
 #include <vector>
 

@@ -2,12 +2,12 @@
 #include <exception>
 
 #include "FuzzFile.h"
-#include "render/Scene.h"
+#include "scene/Scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = cloudlut::fuzz::writeScratch("scene.json", data, size);
   try {
-    (void)cloudlut::render::readScene(path);
+    (void)cloudlut::scene::readScene(path);
   } catch (const std::exception&) {
   }
   return 0;

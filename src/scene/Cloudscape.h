@@ -2,7 +2,7 @@
 // Procedural cloudscapes (seed §5.2): a cloud-type preset (data/presets/*.json, embedded in the
 // binary) and a quality preset (the seed's Table 1) define a camera-centred clipmap grid of
 // particles. The GPU generates them (Renderer::renderCloudscape); generateCloudscapeCpu is the
-// reference with the same functions (shaders/cloudscape_grid.glsl compiled as C++).
+// reference with the same functions (scene/glsl/cloudscape_grid.glsl compiled as C++).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -12,9 +12,9 @@
 #include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 
-#include "render/Scene.h"
+#include "scene/Scene.h"
 
-namespace cloudlut::render {
+namespace cloudlut::scene {
 
 // Ring dimension² × rings × layers (seed Table 1: low 104²×4×2, medium 136²×4×4, high 184²×4×6).
 struct QualityPreset {
@@ -100,4 +100,4 @@ CpuGeneration generateCloudscapeCpu(const CloudType& cloud, const QualityPreset&
 // view direction at `speed` m per frame, turning by `yawDegPerFrame`.
 Camera cameraOnPath(const Camera& start, int frame, float speed, float yawDegPerFrame);
 
-}  // namespace cloudlut::render
+}  // namespace cloudlut::scene

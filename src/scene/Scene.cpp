@@ -1,4 +1,4 @@
-#include "render/Scene.h"
+#include "scene/Scene.h"
 
 #include <cmath>
 #include <fstream>
@@ -11,7 +11,7 @@
 
 #include "core/Errors.h"
 
-namespace cloudlut::render {
+namespace cloudlut::scene {
 
 glm::mat3 Particle::toWorld() const {
   const glm::mat3 r = glm::mat3_cast(rotation);
@@ -270,4 +270,4 @@ glm::mat4 CameraFrame::projectionMatrix(float nearPlane, float farPlane) const {
   return glm::perspective(2.0f * std::atan(tanHalfFov_), aspect_, nearPlane, farPlane);
 }
 
-}  // namespace cloudlut::render
+}  // namespace cloudlut::scene

@@ -1,19 +1,20 @@
-#include "render/Cloudscape.h"
+#include "scene/Cloudscape.h"
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/Errors.h"
-#include "render/CloudscapeGrid.h"
-#include "render/ShaderSources.h"
+#include "scene/CloudscapeGrid.h"
+#include "scene/EmbeddedPresets.h"
 
-namespace cloudlut::render {
+namespace cloudlut::scene {
 
 namespace {
 
@@ -111,7 +112,12 @@ CloudscapeScene parseCloudscape(const nlohmann::json& doc, const std::string& so
 CloudscapeScene loadCloudscape(const std::string& nameOrPath) {
   const auto& names = cloudscapePresetNames();
   if (std::find(names.begin(), names.end(), nameOrPath) != names.end()) {
-    const nlohmann::json doc = nlohmann::json::parse(embeddedShaderFile(nameOrPath + ".json"));
+    const std::string file = nameOrPath + ".json";
+    const char* text = nullptr;
+    for (const auto& f : embedded::kEmbeddedFiles)
+      if (file == f.name) text = f.text;
+    if (!text) throw std::logic_error("preset " + file + " was not embedded in this build");
+    const nlohmann::json doc = nlohmann::json::parse(text);
     CloudscapeScene s = parseCloudscape(doc, "preset " + nameOrPath);
     s.name = nameOrPath;
     return s;
@@ -234,4 +240,4 @@ Camera cameraOnPath(const Camera& start, int frame, float speed, float yawDegPer
   return c;
 }
 
-}  // namespace cloudlut::render
+}  // namespace cloudlut::scene

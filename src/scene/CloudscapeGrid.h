@@ -1,11 +1,11 @@
 #pragma once
-// The clipmap grid functions of src/render/shaders/cloudscape_grid.glsl compiled as C++ through
-// GLM (the same source the generator shader uses), in namespace cloudlut::render::grid.
+// The clipmap grid functions of src/scene/glsl/cloudscape_grid.glsl compiled as C++ through
+// GLM (the same source the generator shader uses), in namespace cloudlut::scene::grid.
 #include <cstdint>
 
 #include <glm/glm.hpp>
 
-namespace cloudlut::render::grid {
+namespace cloudlut::scene::grid {
 using glm::clamp;
 using glm::dot;
 using glm::exp2;
@@ -21,6 +21,6 @@ using glm::vec3;
 using glm::vec4;
 using uint = std::uint32_t;
 #define CLOUDLUT_FN inline
-#include "render/shaders/cloudscape_grid.glsl"
+#include "scene/glsl/cloudscape_grid.glsl"
 #undef CLOUDLUT_FN
-}  // namespace cloudlut::render::grid
+}  // namespace cloudlut::scene::grid

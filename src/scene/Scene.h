@@ -17,7 +17,7 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
-namespace cloudlut::render {
+namespace cloudlut::scene {
 
 // One particle: the unit sphere mapped to the world by x = center + R · diag(radii) · p.
 struct Particle {
@@ -97,4 +97,4 @@ class CameraFrame {
   int width_, height_;
 };
 
-}  // namespace cloudlut::render
+}  // namespace cloudlut::scene
