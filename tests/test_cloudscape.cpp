@@ -19,6 +19,7 @@
 #include "scene/Cloudscape.h"
 #include "scene/CloudscapeGrid.h"
 #include "render/GlContext.h"
+#include "render/GpuParticleRecord.h"
 #include "render/Renderer.h"
 #include "test_render_support.h"
 
@@ -167,9 +168,11 @@ TEST_CASE("cloudscape: GPU generation equals the CPU reference", "[cloudscape]")
   auto context = createHeadlessContext();
   Renderer renderer(*context, luts);
   const CloudscapeScene scene = loadCloudscape(kDefaultCloudscape);
-  for (const char* quality : {"low", "medium"}) {
+  // The presets, and a grid of more layers than any preset (the records' identity must hold them).
+  const QualityPreset tall{"tall", 32, 2, 24};
+  for (const QualityPreset& q : {qualityPreset("low"), qualityPreset("medium"), tall}) {
+    const char* quality = q.name.c_str();
     INFO(quality);
-    const QualityPreset q = qualityPreset(quality);
     const RenderSettings s = cloudSettings(scene, 160, 90);
     const CpuGeneration cpu = generateCloudscapeCpu(scene.cloud, q, s.view.camera, s.width, s.height);
     const CpuGeneration gpu = renderer.generateOnGpu(scene.cloud, q, s);
@@ -178,6 +181,7 @@ TEST_CASE("cloudscape: GPU generation equals the CPU reference", "[cloudscape]")
     const auto mc = byKey(cpu.particles);
     std::size_t matched = 0;
     double worst = 0.0;
+    int topLayer = 0;
     for (const GridParticle& p : gpu.particles) {
       const auto it = mc.find(keyOf(p));
       if (it == mc.end()) continue;
@@ -187,12 +191,18 @@ TEST_CASE("cloudscape: GPU generation equals the CPU reference", "[cloudscape]")
       worst = std::max<double>(worst, glm::length(p.particle.radii - it->second.particle.radii) / scale);
       worst = std::max<double>(worst, std::abs(p.particle.density - it->second.particle.density) /
                                           std::max(it->second.particle.density, 1e-6f));
+      worst = std::max<double>(worst, std::abs(p.weight - it->second.weight));
+      topLayer = std::max(topLayer, p.layer);
     }
     std::printf("[cloudscape] %s: %zu particles (CPU %zu), %zu cells, %zu matched, worst relative difference %.2e\n",
                 quality, gpu.particles.size(), cpu.particles.size(), gpu.validCells, matched, worst);
     CHECK(matched == cpu.particles.size());
     CHECK(worst < 1e-4);
+    if (q.name == "tall") CHECK(topLayer >= 16);
   }
+  // Beyond what the records can identify: a usage error, not a wrong identity.
+  const QualityPreset tooTall{"too tall", 8, 2, kGridLayerLimit + 1};
+  CHECK_THROWS_AS(renderer.generateOnGpu(scene.cloud, tooTall, cloudSettings(scene, 160, 90)), UsageError);
 }
 
 TEST_CASE("cloudscape: occlusion matches exp(-xi * sum tau) computed on the CPU", "[cloudscape]") {

@@ -220,3 +220,103 @@ TEST_CASE("render: degenerate geometry gives finite pixels", "[render]") {
   CHECK(image.nonFiniteCount() == 0);
   CHECK(std::all_of(image.rgba.begin(), image.rgba.end(), [](float v) { return v == 0.0f; }));
 }
+
+namespace {
+
+// The bilateral upscale written out independently, in double: output pixel (x, y) (rows from the
+// top) maps to f = ((x + ½)·w/W − ½, (y + ½)·h/H − ½); its four neighbours ⌊f⌋ + {0, 1}² (clamped)
+// are weighted bilinearly times 1 / (1 + (|d − d_n| / (0.05 d_n))²), d_n the distance of the
+// nearest sample round(f) (1 where both lack a distance, 1e-3 where one does), plus 1e-12.
+Image bilateralUpscaleReference(const Image& low, int width, int height) {
+  Image out;
+  out.width = width;
+  out.height = height;
+  out.rgba.resize(std::size_t(width) * height * 4);
+  out.distance.resize(std::size_t(width) * height);
+  const auto clampTo = [](long v, int n) { return int(std::min<long>(std::max<long>(v, 0), n - 1)); };
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const double fx = (x + 0.5) * low.width / width - 0.5, fy = (y + 0.5) * low.height / height - 0.5;
+      const double ref = low.distanceAt(clampTo(std::lround(fx), low.width), clampTo(std::lround(fy), low.height));
+      const long x0 = long(std::floor(fx)), y0 = long(std::floor(fy));
+      const double ax = fx - std::floor(fx), ay = fy - std::floor(fy);
+      double acc[4] = {0, 0, 0, 0}, wsum = 0;
+      for (long j = 0; j < 2; ++j)
+        for (long i = 0; i < 2; ++i) {
+          const int px = clampTo(x0 + i, low.width), py = clampTo(y0 + j, low.height);
+          const double d = low.distanceAt(px, py);
+          double similarity;
+          if (std::isinf(d) || std::isinf(ref)) {
+            similarity = std::isinf(d) && std::isinf(ref) ? 1.0 : 1e-3;
+          } else {
+            const double rel = std::abs(d - ref) / (0.05 * std::max(ref, 1e-6));
+            similarity = 1.0 / (1.0 + rel * rel);
+          }
+          const double w = (i ? ax : 1.0 - ax) * (j ? ay : 1.0 - ay) * similarity + 1e-12;
+          for (int k = 0; k < 4; ++k) acc[k] += w * low.pixel(px, py)[k];
+          wsum += w;
+        }
+      for (int k = 0; k < 4; ++k) out.rgba[4 * (std::size_t(y) * width + x) + k] = float(acc[k] / wsum);
+      out.distance[std::size_t(y) * width + x] = float(ref);
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("render: the GPU bilateral upscale equals the filter computed on the CPU", "[render]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
+  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
+  auto context = createHeadlessContext();
+  Renderer renderer(*context, luts);
+  RenderSettings low;
+  low.width = 48;
+  low.height = 36;
+  low.view = resolveView(scene, {});
+  // The particle buffer of a render at 1/downscale resolution is the render at the low size
+  // (same camera and aspect): upscale that one on the CPU.
+  const Image small = renderer.render(scene.particles, low);
+  std::size_t edges = 0;
+  for (int y = 0; y + 1 < small.height; ++y)
+    for (int x = 0; x + 1 < small.width; ++x)
+      edges += std::isinf(small.distanceAt(x, y)) != std::isinf(small.distanceAt(x + 1, y + 1));
+  REQUIRE(edges > 20);  // cloud against sky: where the depth term matters
+  for (int down : {2, 4}) {
+    INFO("downscale " << down);
+    RenderSettings s = low;
+    s.width = low.width * down;
+    s.height = low.height * down;
+    s.downscale = down;
+    RenderStats stats;
+    const Image gpu = renderer.render(scene.particles, s, &stats);
+    const Image cpu = bilateralUpscaleReference(small, s.width, s.height);
+    REQUIRE(gpu.width == s.width);
+    REQUIRE(gpu.height == s.height);
+    double worst = 0, fromBilinear = 0;
+    std::size_t distanceMismatch = 0;
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x) {
+        for (int k = 0; k < 4; ++k) worst = std::max<double>(worst, std::abs(gpu.pixel(x, y)[k] - cpu.pixel(x, y)[k]));
+        const float dg = gpu.distanceAt(x, y), dc = cpu.distanceAt(x, y);
+        distanceMismatch += !(dg == dc || std::abs(dg - dc) <= 1e-6f * dc);
+        // Against plain bilinear interpolation of alpha (no depth term), to show the filter is
+        // not that.
+        const double fx = (x + 0.5) / down - 0.5, fy = (y + 0.5) / down - 0.5;
+        const int x0 = std::clamp(int(std::floor(fx)), 0, small.width - 1), y0 = std::clamp(int(std::floor(fy)), 0, small.height - 1);
+        const int x1 = std::min(x0 + 1, small.width - 1), y1 = std::min(y0 + 1, small.height - 1);
+        const double ax = std::clamp(fx - std::floor(fx), 0.0, 1.0), ay = std::clamp(fy - std::floor(fy), 0.0, 1.0);
+        const double bilinear = (1 - ay) * ((1 - ax) * small.pixel(x0, y0)[3] + ax * small.pixel(x1, y0)[3]) +
+                                ay * ((1 - ax) * small.pixel(x0, y1)[3] + ax * small.pixel(x1, y1)[3]);
+        fromBilinear = std::max(fromBilinear, std::abs(cpu.pixel(x, y)[3] - bilinear));
+      }
+    std::printf("[render] upscale x%d: max |GPU - CPU| %.2e, distance mismatches %zu, max |bilateral - bilinear| alpha "
+                "%.3f, upscale %.2f ms\n",
+                down, worst, distanceMismatch, fromBilinear, 1e3 * stats.upscaleSeconds);
+    CHECK(gpu.nonFiniteCount() == 0);
+    CHECK(worst < 1e-5);
+    CHECK(distanceMismatch == 0);
+    CHECK(fromBilinear > 0.05);
+  }
+}

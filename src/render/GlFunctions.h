@@ -28,11 +28,6 @@ namespace cloudlut::render {
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                    \
   X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)              \
   X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                    \
-  X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                  \
-  X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)            \
-  X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                  \
-  X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)            \
-  X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)    \
   X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)      \
   X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                            \
   X(PFNGLREADBUFFERPROC, ReadBuffer)                              \
@@ -81,7 +76,9 @@ namespace cloudlut::render {
   X(PFNGLUNIFORM1UIPROC, Uniform1ui)                              \
   X(PFNGLUNIFORM2IPROC, Uniform2i)                                \
   X(PFNGLUNIFORM4FVPROC, Uniform4fv)                              \
-  X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)
+  X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)          \
+  X(PFNGLGETPROGRAMRESOURCEINDEXPROC, GetProgramResourceIndex)    \
+  X(PFNGLGETPROGRAMRESOURCEIVPROC, GetProgramResourceiv)
 
 struct GlFunctions {
 #define CLOUDLUT_GL_MEMBER(type, name) type name = nullptr;

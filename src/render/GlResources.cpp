@@ -7,7 +7,8 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/Errors.h"
-#include "render/Renderer.h"
+#include "render/RenderTypes.h"
+#include "render/ShaderSources.h"
 
 namespace cloudlut::render {
 namespace {
@@ -85,6 +86,43 @@ GLuint createFloatTexture3D(const GlFunctions& gl, const GlContext& context, con
   return texture;
 }
 
+GlProgram::~GlProgram() {
+  if (gl_ && id_) gl_->DeleteProgram(id_);
+}
+
+GlProgram::GlProgram(GlProgram&& other) noexcept : gl_(other.gl_), id_(other.id_) { other.id_ = 0; }
+
+GlProgram& GlProgram::operator=(GlProgram&& other) noexcept {
+  if (this != &other) {
+    if (gl_ && id_) gl_->DeleteProgram(id_);
+    gl_ = other.gl_;
+    id_ = other.id_;
+    other.id_ = 0;
+  }
+  return *this;
+}
+
+GlProgram linkComputeProgram(const GlFunctions& gl, const std::vector<std::string>& files, const std::string& defines) {
+  const GLuint cs = compileShader(gl, GL_COMPUTE_SHADER, assembleShader(files, defines), shaderFileLegend(files));
+  return GlProgram(gl, linkProgram(gl, {cs}, "compute program " + files.back()));
+}
+
+GlProgram linkDrawProgram(const GlFunctions& gl, const std::vector<std::string>& vertexFiles,
+                          const std::vector<std::string>& fragmentFiles, const std::string& defines,
+                          const std::string& what) {
+  const GLuint vs = compileShader(gl, GL_VERTEX_SHADER, assembleShader(vertexFiles, defines),
+                                  shaderFileLegend(vertexFiles), what);
+  GLuint fs = 0;
+  try {
+    fs = compileShader(gl, GL_FRAGMENT_SHADER, assembleShader(fragmentFiles, defines), shaderFileLegend(fragmentFiles),
+                       what);
+  } catch (const GlError&) {
+    gl.DeleteShader(vs);
+    throw;
+  }
+  return GlProgram(gl, linkProgram(gl, {vs, fs}, what + " program"));
+}
+
 void ProgramUniforms::set(const char* name, const glm::mat4& m) const {
   gl_.UniformMatrix4fv(location(name), 1, GL_FALSE, glm::value_ptr(m));
 }
@@ -97,10 +135,10 @@ FloatRenderTarget::FloatRenderTarget(const GlFunctions& gl, const GlContext& con
   gl.BindTexture(GL_TEXTURE_2D, colourTexture_);
   gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, width, height);
   gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colourTexture_, 0);
-  gl.GenRenderbuffers(1, &distanceRenderbuffer_);
-  gl.BindRenderbuffer(GL_RENDERBUFFER, distanceRenderbuffer_);
-  gl.RenderbufferStorage(GL_RENDERBUFFER, GL_R32F, width, height);
-  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, distanceRenderbuffer_);
+  gl.GenTextures(1, &distanceTexture_);
+  gl.BindTexture(GL_TEXTURE_2D, distanceTexture_);
+  gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, width, height);
+  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, distanceTexture_, 0);
   if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     release();
     throw GlError("the float framebuffer (RGBA32F + R32F) is not complete on " + context.description());
@@ -116,12 +154,13 @@ void FloatRenderTarget::release() {
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
   gl_.DeleteFramebuffers(1, &framebuffer_);
   gl_.DeleteTextures(1, &colourTexture_);
-  gl_.DeleteRenderbuffers(1, &distanceRenderbuffer_);
+  gl_.DeleteTextures(1, &distanceTexture_);
 }
 
 Image FloatRenderTarget::readBack() const {
   const std::size_t w = static_cast<std::size_t>(width_), pixels = w * static_cast<std::size_t>(height_);
   std::vector<float> colour(pixels * 4), distance(pixels);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
   gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, colour.data());

@@ -1,10 +1,11 @@
 #pragma once
-// The OpenGL objects and uploads that the particle renderer (Renderer) and the ray marcher
-// (RayMarchRenderer) both need: shaders and programs with the compiler's log in the error,
+// The OpenGL objects and uploads that the particle renderer (Renderer, its passes) and the ray
+// marcher (RayMarchRenderer) all need: shaders and programs with the compiler's log in the error,
 // float 3D textures within this OpenGL's limits, uniforms set by name, and the float render
 // target (radiance + transmittance, distance) with its read-back as an Image.
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -31,6 +32,34 @@ GLuint compileShader(const GlFunctions& gl, GLenum type, const std::string& sour
 // "<what> does not link:\n<linker log>".
 GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> shaders, const std::string& what);
 
+// An owned program: deleted with the handle (the context must be current then).
+class GlProgram {
+ public:
+  GlProgram() = default;
+  GlProgram(const GlFunctions& gl, GLuint id) : gl_(&gl), id_(id) {}
+  ~GlProgram();
+  GlProgram(GlProgram&& other) noexcept;
+  GlProgram& operator=(GlProgram&& other) noexcept;
+  GlProgram(const GlProgram&) = delete;
+  GlProgram& operator=(const GlProgram&) = delete;
+
+  GLuint id() const { return id_; }
+  GLint uniform(const char* name) const { return gl_->GetUniformLocation(id_, name); }
+
+ private:
+  const GlFunctions* gl_ = nullptr;
+  GLuint id_ = 0;
+};
+
+// A compute program assembled from embedded shader files after `defines` (ShaderSources.h),
+// compiled and linked; GlError with the compiler's log otherwise.
+GlProgram linkComputeProgram(const GlFunctions& gl, const std::vector<std::string>& files, const std::string& defines);
+// A vertex + fragment program, both stages assembled after the same `defines`; `what` names it
+// in errors.
+GlProgram linkDrawProgram(const GlFunctions& gl, const std::vector<std::string>& vertexFiles,
+                          const std::vector<std::string>& fragmentFiles, const std::string& defines,
+                          const std::string& what);
+
 // A new 3D texture of `channels` (1 to 4) floats a texel (R32F, RG32F, RGB32F or RGBA32F), x
 // fastest, then y, then z: linear filtering, clamped to the edges, one level; left bound to
 // GL_TEXTURE_3D. UsageError naming `what` and the context when a side exceeds this OpenGL's
@@ -56,10 +85,10 @@ class ProgramUniforms {
 };
 
 // The framebuffer both renderers draw into, width × height: colour attachment 0 an RGBA32F
-// texture (radiance, transmittance), attachment 1 an R32F renderbuffer (distance). The
-// constructor leaves it bound with both draw buffers enabled and the viewport covering it
-// (GlError if the implementation cannot complete it); the destructor binds the default
-// framebuffer and deletes it.
+// texture (radiance, transmittance), attachment 1 an R32F texture (distance; both textures can
+// be bound as images by compute passes). The constructor leaves it bound with both draw buffers
+// enabled and the viewport covering it (GlError if the implementation cannot complete it); the
+// destructor binds the default framebuffer and deletes it.
 class FloatRenderTarget {
  public:
   FloatRenderTarget(const GlFunctions& gl, const GlContext& context, int width, int height);
@@ -67,10 +96,13 @@ class FloatRenderTarget {
   FloatRenderTarget(const FloatRenderTarget&) = delete;
   FloatRenderTarget& operator=(const FloatRenderTarget&) = delete;
 
+  int width() const { return width_; }
+  int height() const { return height_; }
   GLuint colourTexture() const { return colourTexture_; }
+  GLuint distanceTexture() const { return distanceTexture_; }
 
-  // Both attachments read back: rows top first, A = 1 − transmittance, distances of
-  // kNoDistance or more as +infinity.
+  // Both attachments read back (binding this framebuffer): rows top first, A = 1 − transmittance,
+  // distances of kNoDistance or more as +infinity.
   Image readBack() const;
 
  private:
@@ -78,7 +110,7 @@ class FloatRenderTarget {
 
   const GlFunctions& gl_;
   int width_, height_;
-  GLuint framebuffer_ = 0, colourTexture_ = 0, distanceRenderbuffer_ = 0;
+  GLuint framebuffer_ = 0, colourTexture_ = 0, distanceTexture_ = 0;
 };
 
 }  // namespace cloudlut::render

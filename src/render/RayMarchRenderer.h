@@ -29,7 +29,7 @@
 
 #include "core/ReferenceParticle.h"
 #include "render/GlContext.h"
-#include "render/Renderer.h"
+#include "render/RenderTypes.h"
 #include "scene/Scene.h"
 
 namespace cloudlut::render {

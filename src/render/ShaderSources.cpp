@@ -1,31 +1,11 @@
 #include "render/ShaderSources.h"
 
 #include <map>
-#include <vector>
 
 #include "render/EmbeddedShaders.h"
 #include "render/GlContext.h"
 
 namespace cloudlut::render {
-namespace {
-
-const std::vector<std::string> kVertexFiles = {"particle_common.glsl", "particle.vert.glsl"};
-const std::vector<std::string> kFragmentFiles = {"cloudlut_geometry.glsl", "cloudlut_phase.glsl",
-                                                 "cloudlut_sampling.glsl", "cloudlut_shading.glsl", "particle_common.glsl",
-                                                 "particle.frag.glsl"};
-
-std::string assemble(const std::vector<std::string>& files, const std::string& defines = "") {
-  // CLOUDLUT_FN is empty in GLSL (the shared files also default it themselves).
-  std::string source = "#version 450 core\n#define CLOUDLUT_FN\n" + defines;
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    source += "#line 1 " + std::to_string(i + 1) + "\n";
-    source += embeddedShaderFile(files[i]);
-    source += "\n";
-  }
-  return source;
-}
-
-}  // namespace
 
 const std::string& embeddedShaderFile(const std::string& name) {
   static const std::map<std::string, std::string> files = [] {
@@ -38,14 +18,20 @@ const std::string& embeddedShaderFile(const std::string& name) {
   return it->second;
 }
 
-std::string particleVertexSource() { return assemble(kVertexFiles); }
-std::string particleFragmentSource() { return assemble(kFragmentFiles); }
-
-std::string assembleShader(const std::vector<std::string>& files, const std::string& defines) {
-  return assemble(files, defines);
+std::string glslDefine(const std::string& name, long long value) {
+  return "#define " + name + " " + std::to_string(value) + "\n";
 }
 
-std::string shaderFileLegend(bool fragment) { return shaderFileLegend(fragment ? kFragmentFiles : kVertexFiles); }
+std::string assembleShader(const std::vector<std::string>& files, const std::string& defines) {
+  // CLOUDLUT_FN is empty in GLSL (the shared files also default it themselves).
+  std::string source = "#version 450 core\n#define CLOUDLUT_FN\n" + defines;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    source += "#line 1 " + std::to_string(i + 1) + "\n";
+    source += embeddedShaderFile(files[i]);
+    source += "\n";
+  }
+  return source;
+}
 
 std::string shaderFileLegend(const std::vector<std::string>& files) {
   std::string legend = "source string 0 is the preamble";

@@ -1,7 +1,10 @@
 #pragma once
 // The renderer's GLSL, embedded in the binary at build time (cmake/EmbedFiles.cmake): the shared
 // lut_formats/glsl files verbatim, the clipmap grid functions of src/scene/glsl and
-// src/render/shaders.
+// src/render/shaders. A program's source is "#version 450 core", the `#define`s of the C++ that
+// sizes its buffers and dispatches it, then each file preceded by a #line directive whose
+// source-string number is its position in the list, so that compiler messages can be traced back
+// ("2:LINE" → the second file).
 #include <string>
 #include <vector>
 
@@ -10,17 +13,13 @@ namespace cloudlut::render {
 // The embedded file of that name (e.g. "cloudlut_sampling.glsl"); throws GlError if absent.
 const std::string& embeddedShaderFile(const std::string& name);
 
-// Complete sources of the particle program: "#version 450 core", then each file preceded by
-// a #line directive whose source-string number is its position in the list below, so that
-// compiler messages can be traced back ("0:LINE" → file 0 ...).
-std::string particleVertexSource();
-std::string particleFragmentSource();
+// "#define NAME VALUE\n": a constant that C++ and GLSL share, injected by the C++ that owns it.
+std::string glslDefine(const std::string& name, long long value);
 
-// "file number N is NAME" for a program's sources, for error messages.
-std::string shaderFileLegend(bool fragment);
-
-// A program assembled from embedded files the same way, after `defines` (e.g. "#define STAGE 1\n").
+// A complete program source from embedded files, after `defines` (e.g. glslDefine("STAGE", 1)).
 std::string assembleShader(const std::vector<std::string>& files, const std::string& defines = "");
+
+// "source string 0 is the preamble, 1 is FILE, ..." for a program's sources, for error messages.
 std::string shaderFileLegend(const std::vector<std::string>& files);
 
 }  // namespace cloudlut::render

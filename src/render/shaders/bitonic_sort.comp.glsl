@@ -1,8 +1,9 @@
 // bitonic_sort.comp.glsl — one compare-exchange pass (k, j) of a bitonic sort of the
 // (distance, particle) keys, largest distance first (back to front). The key buffer is padded
-// to a power of two with distance -1, which sorts last.
+// to a power of two with distance -1, which sorts last. GROUP_SIZE (threads per work group) is
+// defined by render/CloudscapeGeneration.cpp, which dispatches it.
 
-layout(local_size_x = 64) in;
+layout(local_size_x = GROUP_SIZE) in;
 
 uniform uint uK;
 uniform uint uJ;

@@ -1,19 +1,23 @@
 // cloudscape_generate.comp.glsl — GPU particle generation (seed §5.2). Preceded by
-// cloudscape_grid.glsl and particle_common.glsl, and by "#define STAGE n":
+// cloudscape_grid.glsl and particle_common.glsl, and by the defines of
+// render/CloudscapeGeneration.cpp: STAGE (below), GROUP_SIZE (threads per work group, from which
+// the C++ and stage 1 compute the dispatch sizes) and GRID_LAYER_LIMIT (the grid identity):
 //   STAGE 0: one thread per grid cell (ring-major); non-empty cells in the frustum are appended
 //            (atomic counter) to the cell list;
 //   STAGE 1: one thread writes the indirect dispatch arguments for stage 2 from the counter;
 //   STAGE 2: one thread per valid cell (glDispatchComputeIndirect): its particles, culled
 //            against the frustum and the far distance, appended to the particle buffer with their
-//            back-to-front sort key.
+//            back-to-front sort key. The level-of-detail weight is folded into each particle's
+//            density and size (cgParticle) and not stored.
 
-layout(local_size_x = 64) in;
+layout(local_size_x = GROUP_SIZE) in;
 
 uniform vec4 uG0;
 uniform vec4 uG1;
 uniform vec4 uG2;
 uniform vec4 uG3;
 uniform vec3 uEye;
+uniform vec3 uSun;  // unit, toward the sun (the records' shadow-ray extinction scale)
 uniform vec4 uPlanes[5];
 
 layout(std430, binding = 6) buffer Generation {
@@ -53,7 +57,7 @@ void main() {
   uint slot = atomicAdd(cellCount, 1u);
   cells[slot] = ivec4(ix, iz, ring, layers);
 #elif STAGE == 1
-  if (id == 0u) dispatchArgs = uvec4((cellCount + 63u) / 64u, 1u, 1u, 0u);
+  if (id == 0u) dispatchArgs = uvec4((cellCount + uint(GROUP_SIZE) - 1u) / uint(GROUP_SIZE), 1u, 1u, 0u);
 #else
   if (id >= cellCount) return;
   ivec4 cell = cells[id];
@@ -79,15 +83,18 @@ void main() {
     vec3 c0 = vec3(cy, 0.0f, -sy);
     vec3 c1 = vec3(0.0f, 1.0f, 0.0f);
     vec3 c2 = vec3(sy, 0.0f, cy);
+    // Inverse: diag(1/r) · R^T; column k of it is (R row k) / r.
+    vec3 i0 = vec3(c0.x / p.radii.x, c1.x / p.radii.y, c2.x / p.radii.z);
+    vec3 i1 = vec3(c0.y / p.radii.x, c1.y / p.radii.y, c2.y / p.radii.z);
+    vec3 i2 = vec3(c0.z / p.radii.x, c1.z / p.radii.y, c2.z / p.radii.z);
     GpuParticle g;
     g.centerDensity = vec4(p.centre, p.density);
     g.toWorld[0] = vec4(c0 * p.radii.x, 1.0f);
-    g.toWorld[1] = vec4(c1 * p.radii.y, p.weight);
-    g.toWorld[2] = vec4(c2 * p.radii.z, 0.0f);
-    // Inverse: diag(1/r) · R^T; column k of it is (R row k) / r.
-    g.toParticle[0] = vec4(c0.x / p.radii.x, c1.x / p.radii.y, c2.x / p.radii.z, float(ring * 16 + k));
-    g.toParticle[1] = vec4(c0.y / p.radii.x, c1.y / p.radii.y, c2.y / p.radii.z, float(cell.x));
-    g.toParticle[2] = vec4(c0.z / p.radii.x, c1.z / p.radii.y, c2.z / p.radii.z, float(cell.y));
+    g.toWorld[1] = vec4(c1 * p.radii.y, 1.0001f * max(p.radii.x, max(p.radii.y, p.radii.z)));
+    g.toWorld[2] = vec4(c2 * p.radii.z, length(mat3(i0, i1, i2) * uSun));
+    g.toParticle[0] = vec4(i0, float(ring * GRID_LAYER_LIMIT + k));
+    g.toParticle[1] = vec4(i1, float(cell.x));
+    g.toParticle[2] = vec4(i2, float(cell.y));
     particles[slot] = g;
     sortKeys[slot] = uvec2(floatBitsToUint(length(p.centre - uEye)), slot);
   }

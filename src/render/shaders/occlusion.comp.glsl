@@ -1,17 +1,19 @@
 // occlusion.comp.glsl — light-space occlusion (seed §5.3). Preceded by particle_common.glsl and
-// "#define STAGE n":
+// the defines of render/LightOcclusion.cpp, which sizes the buffers and dispatches the stages:
+// LIGHT_TILES (tiles per side of the light-space grid), GROUP_SIZE (threads per work group) and
+// STAGE:
 //   STAGE 0: bounds of the particles seen from the sun (atomic min/max in light space u, v);
 //   STAGE 1: tiling: each particle, extended by half a tile (conservative), is pushed onto the
-//            linked list of every 64×64 tile it covers (atomic counter + atomic exchange of heads);
+//            linked list of every tile it covers (atomic counter + atomic exchange of heads);
 //   STAGE 2: per particle, the list of the tile holding its centre: the ray from its centre toward
 //            the sun against every other particle, optical depth of the chord (homogeneous
 //            ellipsoid, ρ·σ per unit-sphere length) scaled by ξ: sunlight = exp(-ξ Σ τ);
 //   STAGE 3: density-weighted smoothing of the sunlight over the particles of the same tile within
 //            twice the particle's radius (light diffusing through the cloud body).
 
-layout(local_size_x = 64) in;
+layout(local_size_x = GROUP_SIZE) in;
 
-const int TILES = 64;
+const int TILES = LIGHT_TILES;
 const uint NIL = 0xffffffffu;
 
 uniform uint uCount;
@@ -57,6 +59,12 @@ ivec2 tileOf(vec2 uv, vec4 frame) {
   return clamp(ivec2(floor((uv - frame.xy) / frame.zw)), ivec2(0), ivec2(TILES - 1));
 }
 
+// First node of the list of the tile holding the light-space point uv.
+uint tileListOf(vec2 uv) {
+  ivec2 t = tileOf(uv, tileFrame());
+  return heads[t.y * TILES + t.x];
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= uCount) return;
@@ -85,10 +93,8 @@ void main() {
       nodes[node] = uvec2(i, next);
     }
 #elif STAGE == 2
-  vec4 frame = tileFrame();
-  ivec2 t = tileOf(uv, frame);
   float tau = 0.0f;
-  uint node = heads[t.y * TILES + t.x];
+  uint node = tileListOf(uv);
   for (int guard = 0; node != NIL && guard < 1000000; ++guard) {
     uvec2 n = nodes[node];
     node = n.y;
@@ -113,12 +119,10 @@ void main() {
   float own = rawSunlight[i];
   float result = own;
   if (uSmooth != 0) {
-    vec4 frame = tileFrame();
-    ivec2 t = tileOf(uv, frame);
     float radius = 2.0f * reach(p);
     float wsum = p.centerDensity.w;
     float sum = wsum * own;
-    uint node = heads[t.y * TILES + t.x];
+    uint node = tileListOf(uv);
     for (int guard = 0; node != NIL && guard < 1000000; ++guard) {
       uvec2 n = nodes[node];
       node = n.y;

@@ -1,6 +1,7 @@
 // particle.frag.glsl — shades one particle along one view ray with the tables (seed §4.4, §5.4).
-// Preceded by cloudlut_geometry.glsl, cloudlut_phase.glsl, cloudlut_sampling.glsl (verbatim,
-// from lut_formats/glsl) and particle_common.glsl.
+// Preceded by cloudlut_geometry.glsl, cloudlut_phase.glsl, cloudlut_sampling.glsl,
+// cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl and
+// volume_fragments.glsl.
 //
 // Output 0 (RGBA32F, blended ONE/SRC_ALPHA for colour, ZERO/SRC_ALPHA for alpha):
 //   rgb = radiance scattered toward the camera, a = transmittance of the particle (alpha mode;
@@ -28,14 +29,7 @@ uniform float uMinOpacityForDistance;
 uniform float uNoDistance;
 uniform int uVolume;  // 1: volume-aware blending (store the segment in the pixel's list)
 
-layout(r32ui, binding = 0) uniform coherent uimage2D uHeads;
-layout(std430, binding = 2) buffer Fragments {
-  uint fragCount;
-  uint fragCapacity;
-  uint fragOverflow;
-  uint truncatedPixels;
-  uint nodes[];  // 7 per node: entry, exit, tau, r, g, b, next
-};
+layout(r32ui, binding = 0) uniform coherent uimage2D uHeads;  // volume_fragments.glsl lists
 
 in vec3 vWorld;
 flat in int vParticle;
@@ -99,14 +93,7 @@ void main() {
   if (uVolume != 0) {
     uint node = atomicAdd(fragCount, 1u);
     if (node < fragCapacity) {
-      uint base = node * 7u;
-      nodes[base] = floatBitsToUint(tEnter);
-      nodes[base + 1u] = floatBitsToUint(tExit);
-      nodes[base + 2u] = floatBitsToUint(tau);
-      nodes[base + 3u] = floatBitsToUint(radiance.r);
-      nodes[base + 4u] = floatBitsToUint(radiance.g);
-      nodes[base + 5u] = floatBitsToUint(radiance.b);
-      nodes[base + 6u] = imageAtomicExchange(uHeads, ivec2(gl_FragCoord.xy), node);
+      storeFragment(node, tEnter, tExit, tau, radiance, imageAtomicExchange(uHeads, ivec2(gl_FragCoord.xy), node));
       oColor = vec4(0.0, 0.0, 0.0, 1.0);  // stored: composited by volume_resolve.comp.glsl
     } else {
       atomicAdd(fragOverflow, 1u);  // no room: alpha-blended into the colour image (fallback)

@@ -3,15 +3,9 @@
 // extinction is σ·ρ·ρ̂ in its own unit-sphere units, so along a world direction ω it is
 // σ·ρ·ρ̂·|M⁻¹ω|), marched with Beer–Lambert transmittance and Hillaire's energy-conserving
 // step integration, shadow rays toward the sun, and Wrenninge's multiple-scattering octaves.
-// Requires cloudlut_phase.glsl. See src/render/RayMarchRenderer.h for the parameters.
-
-struct RmParticle {
-  vec4 centerDensity;  // xyz centre, w density scale ρ
-  vec4 col0;           // M⁻¹ column 0, w = |M⁻¹ l| (extinction scale toward the sun)
-  vec4 col1;           // M⁻¹ column 1, w = bounding-sphere radius
-  vec4 col2;           // M⁻¹ column 2
-};
-layout(std430, binding = 0) readonly buffer Particles { RmParticle particles[]; };
+// Preceded by cloudlut_phase.glsl and particle_common.glsl (the particle records, read only; M⁻¹
+// is toParticle, toWorld[1].w the bounding-sphere radius, toWorld[2].w = |M⁻¹ l| the extinction
+// scale toward the sun). See src/render/RayMarchRenderer.h for the parameters.
 
 uniform int uCount;
 uniform vec3 uEye;
@@ -35,7 +29,9 @@ layout(location = 1) out float outDistance;
 const int MAX_HITS = 48;
 const int MAX_SHADOW_HITS = 24;
 
-mat3 toParticle(int i) { return mat3(particles[i].col0.xyz, particles[i].col1.xyz, particles[i].col2.xyz); }
+mat3 toParticle(int i) {
+  return mat3(particles[i].toParticle[0].xyz, particles[i].toParticle[1].xyz, particles[i].toParticle[2].xyz);
+}
 
 float rhoHat(vec3 p) {
   float r2 = dot(p, p);
@@ -50,7 +46,7 @@ float rhoHat(vec3 p) {
 bool interval(int i, vec3 o, vec3 d, out float t0, out float t1) {
   vec3 c = particles[i].centerDensity.xyz;
   vec3 oc = o - c;
-  float bound = particles[i].col1.w;
+  float bound = particles[i].toWorld[1].w;
   float bb = dot(oc, d);
   if (dot(oc, oc) - bb * bb > bound * bound) { t0 = t1 = 0.0; return false; }
   mat3 m = toParticle(i);
@@ -152,7 +148,7 @@ void main() {
           for (int k = 0; k < sHits; ++k) {
             int i = sIndex[k];
             tau += uSigma * particles[i].centerDensity.w * rhoHat(toParticle(i) * (y - particles[i].centerDensity.xyz)) *
-                   particles[i].col0.w * sdt;
+                   particles[i].toWorld[2].w * sdt;
           }
         }
         float sun = 0.0;

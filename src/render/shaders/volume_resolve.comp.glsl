@@ -8,26 +8,18 @@
 // and the pieces are composited front to back (eqs. 16–17). Non-overlapping segments reduce to
 // alpha blending; the transmittance is exactly e^{−Σ τ_i} in any case.
 //
+// Preceded by volume_fragments.glsl and the defines of render/VolumeResolve.cpp: MAX_SEGMENTS
+// (kMaxSegmentsPerPixel) and GROUP_SIDE (work groups of GROUP_SIDE² pixels).
+//
 // Capacity: at most MAX_SEGMENTS segments per pixel are composited exactly (the nearest ones);
 // farther ones, and fragments that found no room in the node pool (accumulated by the particle
 // pass into the colour image with plain alpha blending, unsorted), are composited behind them.
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
-const int MAX_SEGMENTS = 32;
-const uint NIL = 0xffffffffu;
+layout(local_size_x = GROUP_SIDE, local_size_y = GROUP_SIDE) in;
 
 layout(r32ui, binding = 0) uniform readonly uimage2D uHeads;
 layout(rgba32f, binding = 1) uniform image2D uColor;  // in: overflow (rgb, T); out: the result
 uniform ivec2 uSize;
-
-layout(std430, binding = 2) buffer Fragments {
-  uint fragCount;
-  uint fragCapacity;
-  uint fragOverflow;
-  uint truncatedPixels;
-  uint nodes[];  // 7 per node: entry, exit, tau, r, g, b, next
-};
 
 float seg_a[MAX_SEGMENTS];
 float seg_b[MAX_SEGMENTS];
@@ -50,14 +42,13 @@ void main() {
   float tailT = 1.0f;
   uint node = imageLoad(uHeads, px).x;
   bool truncated = false;
-  for (int guard = 0; node != NIL && guard < 1000000; ++guard) {
-    uint base = node * 7u;
-    float a = uintBitsToFloat(nodes[base]);
-    float b = uintBitsToFloat(nodes[base + 1u]);
-    float tau = uintBitsToFloat(nodes[base + 2u]);
-    vec3 r = vec3(uintBitsToFloat(nodes[base + 3u]), uintBitsToFloat(nodes[base + 4u]),
-                  uintBitsToFloat(nodes[base + 5u]));
-    node = nodes[base + 6u];
+  for (int guard = 0; node != FRAGMENT_LIST_END && guard < 1000000; ++guard) {
+    vec3 span = fragmentSpan(node);
+    float a = span.x;
+    float b = span.y;
+    float tau = span.z;
+    vec3 r = fragmentRadiance(node);
+    node = fragmentNext(node);
     b = max(b, a + max(1e-6f * abs(a), 1e-9f));
     int slot = n;
     if (n == MAX_SEGMENTS) {

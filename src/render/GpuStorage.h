@@ -1,0 +1,64 @@
+#pragma once
+// Shader storage buffers for the renderer's passes: a budget (what this OpenGL and this machine
+// allow one buffer to hold) and an owned buffer that is sized on demand.
+#include <cstddef>
+#include <string>
+
+#include "render/GlContext.h"
+#include "render/GlFunctions.h"
+
+namespace cloudlut::render {
+
+// Bytes one shader storage buffer may hold: GL_MAX_SHADER_STORAGE_BLOCK_SIZE, and at most half
+// the machine's physical memory (the GPU of a headless llvmpipe context is this machine).
+class StorageBudget {
+ public:
+  StorageBudget(const GlFunctions& gl, const GlContext& context);
+
+  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE alone (bytes).
+  std::size_t maxBlockBytes() const { return maxBlock_; }
+  // UsageError "<what> needs N MiB of GPU buffer, more than the M MiB this OpenGL (...) and
+  // machine allow" when `bytes` exceeds the budget.
+  void require(long double bytes, const std::string& what) const;
+
+ private:
+  std::size_t maxBlock_ = 0;
+  long double limit_ = 0;
+  std::string context_;
+};
+
+// An owned shader storage buffer (deleted with it; the context must be current then).
+class StorageBuffer {
+ public:
+  explicit StorageBuffer(const GlFunctions& gl);
+  ~StorageBuffer();
+  StorageBuffer(const StorageBuffer&) = delete;
+  StorageBuffer& operator=(const StorageBuffer&) = delete;
+
+  GLuint id() const { return id_; }
+  std::size_t bytes() const { return bytes_; }
+  // Reallocates (contents undefined) unless the buffer holds at least `bytes` and at most about
+  // twice as many (so that a much smaller frame gives memory back).
+  void ensure(std::size_t bytes);
+  // Replaces the contents by `bytes` bytes of `data` (exactly that size).
+  void assign(const void* data, std::size_t bytes);
+  void bind(GLuint binding) const { gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, id_); }
+  // Copies `bytes` from byte `offset` of the buffer (GPU → CPU; waits for the GPU).
+  void read(std::size_t offset, std::size_t bytes, void* out) const;
+  void write(std::size_t offset, std::size_t bytes, const void* data) const;
+
+ private:
+  const GlFunctions& gl_;
+  GLuint id_ = 0;
+  std::size_t bytes_ = 0;
+};
+
+// Every write of the passes before it visible to every read after it.
+inline void fullBarrier(const GlFunctions& gl) { gl.MemoryBarrier(GL_ALL_BARRIER_BITS); }
+
+// Work groups of `groupSize` threads that cover `threads` threads.
+inline unsigned groupsFor(std::size_t threads, unsigned groupSize) {
+  return static_cast<unsigned>((threads + groupSize - 1) / groupSize);
+}
+
+}  // namespace cloudlut::render

@@ -1,0 +1,70 @@
+#include "render/ParticlePass.h"
+
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "render/VolumeResolve.h"
+
+namespace cloudlut::render {
+
+namespace {
+
+const std::vector<std::string> kVertexFiles = {"particle_common.glsl", "particle.vert.glsl"};
+const std::vector<std::string> kFragmentFiles = {"cloudlut_geometry.glsl", "cloudlut_phase.glsl",
+                                                 "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
+                                                 "particle_common.glsl", "volume_fragments.glsl",
+                                                 "particle.frag.glsl"};
+constexpr GLsizei kBoxVertices = 36;  // 6 faces × 2 triangles (particle.vert.glsl)
+
+}  // namespace
+
+ParticlePass::ParticlePass(const GlFunctions& gl, const GlContext& context, const io::LutSet& luts,
+                           ParticleBuffers& buffers)
+    : gl_(gl), buffers_(buffers), tables_(gl, context, luts) {
+  program_ = linkDrawProgram(gl, kVertexFiles, kFragmentFiles, VolumeResolve::fragmentDefines(), "particle");
+  requireParticleRecordLayout(gl, program_.id(), "particle program");
+  gl_.GenVertexArrays(1, &vao_);
+}
+
+ParticlePass::~ParticlePass() { gl_.DeleteVertexArrays(1, &vao_); }
+
+void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
+                        const RenderSettings& s) {
+  gl_.Disable(GL_DEPTH_TEST);
+  gl_.Enable(GL_CULL_FACE);
+  gl_.FrontFace(GL_CCW);
+  gl_.CullFace(GL_FRONT);
+  gl_.Enable(GL_BLEND);
+  gl_.BlendEquationi(0, GL_FUNC_ADD);
+  gl_.BlendFuncSeparatei(0, GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_SRC_ALPHA);
+  gl_.BlendEquationi(1, GL_MIN);
+
+  gl_.UseProgram(program_.id());
+  const ProgramUniforms uniforms(gl_, program_.id());
+  const scene::CameraFrame frame(s.view.camera, width, height);
+  const float nearPlane = farPlane * 1e-6f;
+  uniforms.set("uViewProjection", frame.projectionMatrix(nearPlane, farPlane) * frame.viewMatrix());
+  uniforms.set("uEye", frame.eye());
+  const scene::Lighting& light = s.view.lighting;
+  uniforms.set("uSunDirection", glm::normalize(light.sunDirection));
+  uniforms.set("uSunColor", light.sunColor);
+  uniforms.set("uSkyColor", light.skyColor);
+  uniforms.set("uTerms", static_cast<GLint>(s.terms));
+  tables_.bind(uniforms);
+  uniforms.set("uMinOpacityForDistance", kMinOpacityForDistance);
+  uniforms.set("uNoDistance", kNoDistance);
+  uniforms.set("uUseOrder", useOrder ? 1 : 0);
+  uniforms.set("uVolume", volume ? 1 : 0);
+  buffers_.records.bind(ParticleBuffers::kRecordsBinding);
+  if (buffers_.sortKeys.bytes() == 0) buffers_.sortKeys.ensure(64);
+  buffers_.sortKeys.bind(ParticleBuffers::kSortKeysBinding);
+
+  gl_.BindVertexArray(vao_);
+  if (count > 0) gl_.DrawArraysInstanced(GL_TRIANGLES, 0, kBoxVertices, static_cast<GLsizei>(count));
+  gl_.Finish();
+  checkGlError(gl_, "rendering the particles");
+}
+
+}  // namespace cloudlut::render

@@ -1,0 +1,47 @@
+#pragma once
+// The particle pass (seed §4.4, §5.4; shaders/particle.vert.glsl, particle.frag.glsl): each
+// particle's bounding box is rasterised, the fragment shader intersects the view ray with the
+// ellipsoid and shades it from the tables (render/Renderer.h gives the shading equations);
+// radiance and transmittance are alpha-blended back to front (C ← radiance + e^{−τ}·C,
+// T ← e^{−τ}·T) into the float target, the distance to the first matter kept with MIN. In volume
+// mode each segment goes to its pixel's fragment list instead (render/VolumeResolve.h), and only
+// the fragments that found no room are blended.
+#include <cstddef>
+
+#include "io/LutIo.h"
+#include "render/GlContext.h"
+#include "render/GlFunctions.h"
+#include "render/GlResources.h"
+#include "render/GpuParticleRecord.h"
+#include "render/RenderTypes.h"
+#include "render/ShadingTables.h"
+
+namespace cloudlut::render {
+
+class ParticlePass {
+ public:
+  // Uploads the tables (ShadingTables: FileError for an unusable set) and builds the program.
+  ParticlePass(const GlFunctions& gl, const GlContext& context, const io::LutSet& luts, ParticleBuffers& buffers);
+  ~ParticlePass();
+  ParticlePass(const ParticlePass&) = delete;
+  ParticlePass& operator=(const ParticlePass&) = delete;
+
+  const ShadingTables& tables() const { return tables_; }
+
+  // Draws the first `count` records into the bound target of width × height pixels (the
+  // settings' camera, with the projection's far plane at `farPlane` and its near plane at
+  // 1e-6 · farPlane): in the order of the sorted keys when `useOrder`, else in record order.
+  // `volume`: the fragment lists are bound (VolumeResolve::prepare) and receive the segments.
+  // Waits for the GPU (glFinish).
+  void draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
+            const RenderSettings& settings);
+
+ private:
+  const GlFunctions& gl_;
+  ParticleBuffers& buffers_;
+  ShadingTables tables_;
+  GlProgram program_;
+  GLuint vao_ = 0;
+};
+
+}  // namespace cloudlut::render

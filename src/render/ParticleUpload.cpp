@@ -1,0 +1,32 @@
+#include "render/ParticleUpload.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "core/Errors.h"
+
+namespace cloudlut::render {
+
+float ParticleUpload::upload(const std::vector<scene::Particle>& particles, const std::vector<std::size_t>& order,
+                             const glm::vec3& eye, const glm::vec3& sunDirection) {
+  const std::size_t maxParticles = budget_.maxBlockBytes() / sizeof(GpuParticleRecord);
+  if (particles.size() > maxParticles)
+    throw UsageError(std::to_string(particles.size()) + " particles exceed this OpenGL's shader storage limit of " +
+                     std::to_string(maxParticles) + " particles per render");
+  std::vector<GpuParticleRecord> records(order.size());
+  float farthest = 0.0f;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const scene::Particle& p = particles[order[k]];
+    records[k] = packParticle(p, sunDirection);
+    const float reach = std::sqrt(3.0f) * std::max({p.radii.x, p.radii.y, p.radii.z});
+    farthest = std::max(farthest, glm::length(p.center - eye) + reach);
+  }
+  buffers_.records.assign(records.empty() ? nullptr : records.data(),
+                          std::max<std::size_t>(records.size(), 1) * sizeof(GpuParticleRecord));
+  return std::max(farthest * 1.01f, 1e-3f);
+}
+
+}  // namespace cloudlut::render

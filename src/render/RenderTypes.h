@@ -1,0 +1,79 @@
+#pragma once
+// What a render of the particle renderer takes and gives: its settings, the image (radiance,
+// opacity, distance to the first matter) and the time and counts of its passes.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "scene/Scene.h"
+
+namespace cloudlut::render {
+
+enum Term : unsigned { kTermSingle = 1, kTermMultiple = 2, kTermAmbient = 4, kAllTerms = 7 };
+
+// Pixels whose closest particle is more transparent than this carry no distance.
+inline constexpr float kMinOpacityForDistance = 1.0f / 256.0f;
+inline constexpr int kMaxImageSide = 16384;
+// Occlusion (seed §5.3): extinction scale of the light-space occlusion, and the tile grid
+// (kLightTiles × kLightTiles tiles; render/LightOcclusion.h).
+inline constexpr float kOcclusionXi = 0.05f;
+inline constexpr int kLightTiles = 64;
+// Volume blending: segments composited exactly per pixel (render/VolumeResolve.h), and the
+// default size of the fragment node pool per pixel of the particle buffer.
+inline constexpr int kMaxSegmentsPerPixel = 32;
+inline constexpr int kDefaultFragmentsPerPixel = 16;
+
+enum class BlendMode { Alpha, Volume };
+// "alpha" / "volume"; UsageError otherwise.
+BlendMode parseBlendMode(const std::string& text);
+const char* toString(BlendMode mode);
+
+struct RenderSettings {
+  int width = 640;
+  int height = 360;
+  scene::View view;
+  unsigned terms = kAllTerms;
+  BlendMode blend = BlendMode::Alpha;
+  int downscale = 1;            // particles rendered at 1/downscale resolution (1, 2 or 4), then upscaled
+  bool occlusion = true;        // light-space occlusion (sunlight 1 otherwise)
+  bool smoothOcclusion = true;  // its density-weighted smoothing pass
+  int fragmentsPerPixel = kDefaultFragmentsPerPixel;  // volume: node pool size per low-res pixel
+};
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  // Row 0 is the top row. Per pixel: linear radiance R, G, B (per unit sun irradiance, sr⁻¹,
+  // times the sun colour) and A = 1 − transmittance of all the particles.
+  std::vector<float> rgba;
+  // Distance from the eye to the first matter of the closest particle at least
+  // kMinOpacityForDistance opaque; +infinity where there is none.
+  std::vector<float> distance;
+
+  const float* pixel(int x, int y) const { return rgba.data() + 4 * (static_cast<std::size_t>(y) * width + x); }
+  float distanceAt(int x, int y) const { return distance[static_cast<std::size_t>(y) * width + x]; }
+  // Samples that are NaN or infinite in rgba (distance may hold +infinity by design).
+  std::size_t nonFiniteCount() const;
+};
+
+// UsageError unless 1 ≤ width, height ≤ kMaxImageSide and the buffers of such an image fit in
+// the memory this machine can spare.
+void checkImageSize(long long width, long long height);
+
+struct RenderStats {
+  double uploadSeconds = 0;     // particle buffer upload (explicit particles)
+  double generateSeconds = 0;   // GPU generation + sort (cloudscapes)
+  double occlusionSeconds = 0;  // light-space tiling, occlusion, smoothing
+  double renderSeconds = 0;     // shading + blending: draw (+ volume resolve), glFinish
+  double resolveSeconds = 0;    // of which the volume resolve
+  double upscaleSeconds = 0;    // bilateral upscale (GPU), glFinish
+  double readbackSeconds = 0;   // the final image to the CPU
+  std::size_t particles = 0;         // drawn
+  std::size_t validCells = 0;        // cloudscapes: non-empty cells in the frustum
+  std::size_t fragments = 0;         // volume: fragments produced
+  std::size_t fragmentOverflow = 0;  // volume: fragments alpha-blended for want of pool room
+  std::size_t truncatedPixels = 0;   // volume: pixels with more than kMaxSegmentsPerPixel segments
+  std::size_t tileOverflow = 0;      // occlusion: tile-list nodes dropped
+};
+
+}  // namespace cloudlut::render

@@ -1,0 +1,113 @@
+#include "render/ShadingTables.h"
+
+#include <cmath>
+
+#include "core/Errors.h"
+#include "core/TableLookup.h"
+
+namespace cloudlut::render {
+
+namespace {
+
+const Table4D& requireTable(const io::LutSet& luts, const std::string& name) {
+  const auto it = luts.tables.find(name);
+  if (it == luts.tables.end())
+    throw FileError(luts.dir.string(), "has no '" + name + "' table (the renderer needs optical_depth, "
+                                       "single_scattering and multiple_scattering)");
+  return it->second.table;
+}
+
+}  // namespace
+
+ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, const io::LutSet& set)
+    : gl_(gl), luts_(set.dir.string()) {
+  const Table4D& od = requireTable(set, "optical_depth");
+  const Table4D& l1 = requireTable(set, "single_scattering");
+  const Table4D& lm = requireTable(set, "multiple_scattering");
+  // the shader decodes single_scattering as log2 and multiple_scattering as linear mean sources
+  ScatteringStorage storage1, storageM;
+  try {
+    storage1 = scatteringStorage(l1);
+    storageM = scatteringStorage(lm);
+  } catch (const std::runtime_error& e) {
+    throw FileError(luts_, e.what());
+  }
+  if (storage1 != ScatteringStorage::Log2MeanSource || storageM != ScatteringStorage::MeanSource)
+    throw FileError(luts_, std::string("single_scattering must store '") + kSingleScatteringChannel +
+                               "' and multiple_scattering '" + kMultipleScatteringChannel + "'");
+  unitOpticalRadius_ = cloudlut::unitOpticalRadius(od);
+  if (!(unitOpticalRadius_ > 0.0f) || !std::isfinite(unitOpticalRadius_))
+    throw FileError(luts_, "optical_depth: extinction_per_m · radius_m is not a positive number");
+  const nlohmann::json phase = l1.parameters().value("first_phase", nlohmann::json::object());
+  if (!phase.is_object()) throw FileError(luts_, "single_scattering: parameter first_phase is not an object");
+  try {
+    firstPhaseKind_ = phase.value("kind", 2);
+    firstPhaseParam_ = phase.value("param", 0.9f);
+  } catch (const nlohmann::json::exception&) {
+    throw FileError(luts_, "single_scattering: first_phase.kind/param are not numbers");
+  }
+  if (firstPhaseKind_ < 0 || firstPhaseKind_ > 3 || !std::isfinite(firstPhaseParam_))
+    throw FileError(luts_, "single_scattering: unknown first_phase kind " + std::to_string(firstPhaseKind_));
+
+  try {
+    opticalDepth_ = upload(context, od, false);
+    single_ = upload(context, l1, true);
+    multiple_ = upload(context, lm, true);
+  } catch (...) {
+    const GLuint textures[] = {opticalDepth_.texture, single_.texture, multiple_.texture};
+    gl_.DeleteTextures(3, textures);
+    throw;
+  }
+}
+
+ShadingTables::~ShadingTables() {
+  const GLuint textures[] = {opticalDepth_.texture, single_.texture, multiple_.texture};
+  gl_.DeleteTextures(3, textures);
+}
+
+ShadingTables::Texture ShadingTables::upload(const GlContext& context, const Table4D& table, bool scattering) {
+  const auto d = table.dims();
+  const int channels = table.channelCount();
+  if (channels < 1 || channels > 4)
+    throw FileError(luts_, table.name() + ": " + std::to_string(channels) + " channels (the renderer takes 1 to 4)");
+  if (table.data().size() != table.nodeCount() * static_cast<std::size_t>(channels))
+    throw FileError(luts_, table.name() + ": payload size does not match its dimensions");
+  for (float v : table.data())
+    if (!std::isfinite(v)) throw FileError(luts_, table.name() + ": holds a non-finite value");
+  Texture t;
+  t.texture = createFloatTexture3D(gl_, context, table.name(), d[0], d[1], static_cast<long long>(d[2]) * d[3],
+                                   channels, table.data().data());
+  t.dims = glm::vec4(d[0], d[1], d[2], d[3]);
+  if (scattering) {
+    const Axis& a = table.axes()[3];
+    t.scatteringAxes = glm::vec3(static_cast<float>(a.min), static_cast<float>(a.max),
+                                 static_cast<float>(table.axes()[0].warp));
+    if (!std::isfinite(t.scatteringAxes.x) || !std::isfinite(t.scatteringAxes.y)) {
+      gl_.DeleteTextures(1, &t.texture);
+      throw FileError(luts_, table.name() + ": density axis range is not finite");
+    }
+  }
+  checkGlError(gl_, ("uploading table " + table.name()).c_str());
+  return t;
+}
+
+void ShadingTables::bindTable(const ProgramUniforms& uniforms, int unit, const char* sampler, const char* dimsName,
+                              const Texture& t) const {
+  gl_.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+  gl_.BindTexture(GL_TEXTURE_3D, t.texture);
+  uniforms.set(sampler, unit);
+  uniforms.set(dimsName, t.dims);
+}
+
+void ShadingTables::bind(const ProgramUniforms& uniforms) const {
+  bindTable(uniforms, 0, "uOpticalDepth", "uOpticalDepthDims", opticalDepth_);
+  bindTable(uniforms, 1, "uSingle", "uSingleDims", single_);
+  bindTable(uniforms, 2, "uMultiple", "uMultipleDims", multiple_);
+  uniforms.set("uSingleAxes", single_.scatteringAxes);
+  uniforms.set("uMultipleAxes", multiple_.scatteringAxes);
+  uniforms.set("uUnitOpticalRadius", unitOpticalRadius_);
+  uniforms.set("uFirstPhaseKind", firstPhaseKind_);
+  uniforms.set("uFirstPhaseParam", firstPhaseParam_);
+}
+
+}  // namespace cloudlut::render

@@ -1,0 +1,53 @@
+#pragma once
+// The three tables the particle pass shades with (seed §4.4), as 3D textures in their file
+// layout (axes 0, 1 and 2·3 folded into one: texel (i0, i1, i2 + N2·i3)), with the parameters the
+// shader needs to address and decode them: the optical-depth table's unit optical radius
+// σ = extinction_per_m · radius_m, the scattering tables' density axis (log2 ρ at its ends) and θS
+// warp, and the single table's first phase function.
+#include <string>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "io/LutIo.h"
+#include "render/GlContext.h"
+#include "render/GlFunctions.h"
+#include "render/GlResources.h"
+
+namespace cloudlut::render {
+
+class ShadingTables {
+ public:
+  // Uses the set's "optical_depth", "single_scattering" (log2 mean source) and
+  // "multiple_scattering" (mean source) tables; FileError naming the directory when one is missing
+  // or unusable (storage, channels, payload size, non-finite values, first_phase).
+  ShadingTables(const GlFunctions& gl, const GlContext& context, const io::LutSet& luts);
+  ~ShadingTables();
+  ShadingTables(const ShadingTables&) = delete;
+  ShadingTables& operator=(const ShadingTables&) = delete;
+
+  float unitOpticalRadius() const { return unitOpticalRadius_; }
+
+  // Binds the tables to texture units 0 to 2 and sets the particle program's uniforms that
+  // describe them (uOpticalDepth*, uSingle*, uMultiple*, uUnitOpticalRadius, uFirstPhase*).
+  void bind(const ProgramUniforms& uniforms) const;
+
+ private:
+  struct Texture {
+    GLuint texture = 0;
+    glm::vec4 dims{0.0f};
+    glm::vec3 scatteringAxes{0.0f};  // scattering table: log2 ρ at the ends of axis 3, θS warp
+  };
+  Texture upload(const GlContext& context, const Table4D& table, bool scattering);
+  void bindTable(const ProgramUniforms& uniforms, int unit, const char* sampler, const char* dimsName,
+                 const Texture& t) const;
+
+  const GlFunctions& gl_;
+  std::string luts_;
+  Texture opticalDepth_, single_, multiple_;
+  float unitOpticalRadius_ = 0;
+  int firstPhaseKind_ = 2;
+  float firstPhaseParam_ = 0.9f;
+};
+
+}  // namespace cloudlut::render

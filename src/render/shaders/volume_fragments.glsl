@@ -1,0 +1,44 @@
+// volume_fragments.glsl — the per-pixel fragment lists of volume-aware blending: the particle
+// pass (particle.frag.glsl) pushes each particle's segment onto its pixel's list, the resolve
+// (volume_resolve.comp.glsl) composites the lists. Preceded by the defines of
+// render/VolumeResolve.cpp, which sizes the node pool: FRAGMENT_NODE_WORDS (words per node).
+//
+// Node layout (FRAGMENT_NODE_WORDS = 7 words): entry and exit distance along the view ray (world
+// units), optical depth τ, radiance r, g, b scattered toward the camera (premultiplied), index of
+// the next node of the pixel's list (FRAGMENT_LIST_END ends it). The heads are an r32ui image.
+
+#if FRAGMENT_NODE_WORDS < 7
+#error "a fragment node holds seven words"
+#endif
+
+const uint FRAGMENT_LIST_END = 0xffffffffu;
+
+layout(std430, binding = 2) buffer Fragments {
+  uint fragCount;        // nodes asked for (may exceed the capacity)
+  uint fragCapacity;     // nodes the pool holds
+  uint fragOverflow;     // fragments that found no room (alpha-blended by the particle pass)
+  uint truncatedPixels;  // pixels with more than MAX_SEGMENTS segments (counted by the resolve)
+  uint nodes[];
+};
+
+void storeFragment(uint node, float entry, float exitDistance, float tau, vec3 radiance, uint next) {
+  uint base = node * uint(FRAGMENT_NODE_WORDS);
+  nodes[base] = floatBitsToUint(entry);
+  nodes[base + 1u] = floatBitsToUint(exitDistance);
+  nodes[base + 2u] = floatBitsToUint(tau);
+  nodes[base + 3u] = floatBitsToUint(radiance.r);
+  nodes[base + 4u] = floatBitsToUint(radiance.g);
+  nodes[base + 5u] = floatBitsToUint(radiance.b);
+  nodes[base + 6u] = next;
+}
+
+// (entry, exit, τ) of a node, its radiance, and the next node.
+vec3 fragmentSpan(uint node) {
+  uint base = node * uint(FRAGMENT_NODE_WORDS);
+  return vec3(uintBitsToFloat(nodes[base]), uintBitsToFloat(nodes[base + 1u]), uintBitsToFloat(nodes[base + 2u]));
+}
+vec3 fragmentRadiance(uint node) {
+  uint base = node * uint(FRAGMENT_NODE_WORDS);
+  return vec3(uintBitsToFloat(nodes[base + 3u]), uintBitsToFloat(nodes[base + 4u]), uintBitsToFloat(nodes[base + 5u]));
+}
+uint fragmentNext(uint node) { return nodes[node * uint(FRAGMENT_NODE_WORDS) + 6u]; }
