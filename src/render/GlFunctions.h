@@ -63,6 +63,7 @@ namespace cloudlut::render {
   X(PFNGLBINDBUFFERPROC, BindBuffer)                              \
   X(PFNGLBUFFERDATAPROC, BufferData)                              \
   X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                      \
+  X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                    \
   X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)             \
   X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                    \
   X(PFNGLDISPATCHCOMPUTEINDIRECTPROC, DispatchComputeIndirect)    \

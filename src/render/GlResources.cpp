@@ -159,32 +159,39 @@ void FloatRenderTarget::release() {
 
 Image FloatRenderTarget::readBack() const {
   const std::size_t w = static_cast<std::size_t>(width_), pixels = w * static_cast<std::size_t>(height_);
-  std::vector<float> colour(pixels * 4), distance(pixels);
-  gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-  gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
-  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
-  gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, colour.data());
-  gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
-  gl_.ReadPixels(0, 0, width_, height_, GL_RED, GL_FLOAT, distance.data());
-  checkGlError(gl_, "reading the image back");
-
   Image image;
   image.width = width_;
   image.height = height_;
   image.rgba.resize(pixels * 4);
   image.distance.resize(pixels);
-  for (int y = 0; y < height_; ++y) {  // GL's rows are bottom first
-    const std::size_t src = static_cast<std::size_t>(height_ - 1 - y) * w, dst = static_cast<std::size_t>(y) * w;
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, image.rgba.data());
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
+  gl_.ReadPixels(0, 0, width_, height_, GL_RED, GL_FLOAT, image.distance.data());
+  checkGlError(gl_, "reading the image back");
+
+  // GL's rows are bottom first: swap them in place, each pair converted while in cache
+  // (transmittance → alpha, kNoDistance → +∞).
+  const auto convert = [&](std::size_t row) {
+    float* c = image.rgba.data() + 4 * w * row;
+    float* d = image.distance.data() + w * row;
     for (std::size_t x = 0; x < w; ++x) {
-      const float* c = &colour[4 * (src + x)];
-      float* o = &image.rgba[4 * (dst + x)];
-      o[0] = c[0];
-      o[1] = c[1];
-      o[2] = c[2];
-      o[3] = 1.0f - c[3];
-      const float d = distance[src + x];
-      image.distance[dst + x] = d >= kNoDistance ? std::numeric_limits<float>::infinity() : d;
+      c[4 * x + 3] = 1.0f - c[4 * x + 3];
+      if (d[x] >= kNoDistance) d[x] = std::numeric_limits<float>::infinity();
     }
+  };
+  for (std::size_t top = 0, bottom = static_cast<std::size_t>(height_) - 1; top <= bottom; ++top, --bottom) {
+    if (top < bottom) {
+      std::swap_ranges(image.rgba.data() + 4 * w * top, image.rgba.data() + 4 * w * (top + 1),
+                       image.rgba.data() + 4 * w * bottom);
+      std::swap_ranges(image.distance.data() + w * top, image.distance.data() + w * (top + 1),
+                       image.distance.data() + w * bottom);
+      convert(bottom);
+    }
+    convert(top);
+    if (bottom == 0) break;
   }
   return image;
 }

@@ -55,7 +55,7 @@ struct Renderer::Impl {
         occlusion(gl, budget, buffers),
         particles(gl, c, luts, buffers),
         volume(gl, budget),
-        upscale(gl) {
+        upscale(gl, budget) {
     checkGlError(gl, "creating the renderer");
   }
 
@@ -101,7 +101,6 @@ struct Renderer::Impl {
   Image draw(std::size_t count, bool useOrder, float farPlane, const RenderSettings& s, RenderStats* stats) {
     const int w = (s.width + s.downscale - 1) / s.downscale, h = (s.height + s.downscale - 1) / s.downscale;
     requireTargetSize(w, h, s);
-    if (s.downscale > 1) requireTargetSize(s.width, s.height, s);
     const bool blendVolume = s.blend == BlendMode::Volume;
     if (blendVolume)
       volume.prepare(w, h, s.fragmentsPerPixel);
@@ -109,7 +108,7 @@ struct Renderer::Impl {
       volume.bindUnused();
 
     // Float framebuffer: radiance + transmittance (a texture, for the resolve), and distance.
-    auto target = std::make_unique<FloatRenderTarget>(gl, context, w, h);
+    FloatRenderTarget target(gl, context, w, h);
     const float clearColour[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     const float clearDistance[4] = {kNoDistance, 0.0f, 0.0f, 0.0f};
     gl.ClearBufferfv(GL_COLOR, 0, clearColour);
@@ -119,7 +118,7 @@ struct Renderer::Impl {
     particles.draw(count, useOrder, blendVolume, farPlane, w, h, s);
     if (blendVolume) {
       const Stopwatch resolveClock;
-      volume.resolve(target->colourTexture());
+      volume.resolve(target.colourTexture());
       if (stats) {
         stats->resolveSeconds = resolveClock.seconds();
         const VolumeResolve::Counts c = volume.counts();
@@ -135,14 +134,11 @@ struct Renderer::Impl {
 
     if (s.downscale > 1) {
       const Stopwatch upscaleClock;
-      auto full = std::make_unique<FloatRenderTarget>(gl, context, s.width, s.height);
-      upscale.run(*target, *full);
-      target = std::move(full);  // the low-resolution target is released here
+      upscale.run(target, s.width, s.height);
       if (stats) stats->upscaleSeconds = upscaleClock.seconds();
     }
-    // Read back, flip to top-first rows, and turn transmittance into alpha.
     const Stopwatch readClock;
-    Image image = target->readBack();
+    Image image = s.downscale > 1 ? upscale.readBack() : target.readBack();
     if (stats) stats->readbackSeconds = readClock.seconds();
     return image;
   }
