@@ -26,9 +26,9 @@ GpuParticleRecord packParticle(const scene::Particle& p, const glm::vec3& sunDir
       r.toWorld[c][i] = w[c][i];
       r.toParticle[c][i] = inv[c][i];
     }
-  r.toWorld[0][3] = 1.0f;  // sunlight until the occlusion pass
-  r.toWorld[1][3] = 1.0001f * std::max({p.radii.x, p.radii.y, p.radii.z});
-  r.toWorld[2][3] = glm::length(inv * sunDirection);
+  r.toParticle[0][3] = glm::length(inv * sunDirection);
+  r.toParticle[1][3] = 1.0001f * std::max({p.radii.x, p.radii.y, p.radii.z});
+  r.toParticle[2][3] = 1.0f;  // sunlight until the occlusion pass
   return r;
 }
 
@@ -43,11 +43,11 @@ scene::GridParticle unpackGridParticle(const GpuParticleRecord& r, const scene::
   gp.particle.radii = {glm::length(c0), glm::length(c1), glm::length(c2)};
   gp.particle.rotation =
       glm::quat_cast(glm::mat3(c0 / gp.particle.radii.x, c1 / gp.particle.radii.y, c2 / gp.particle.radii.z));
-  const int id = static_cast<int>(r.toParticle[0][3]);
+  const int id = static_cast<int>(r.toWorld[0][3]);
   gp.ring = id / kGridLayerLimit;
   gp.layer = id % kGridLayerLimit;
-  gp.cellX = static_cast<int>(r.toParticle[1][3]);
-  gp.cellZ = static_cast<int>(r.toParticle[2][3]);
+  gp.cellX = static_cast<int>(r.toWorld[1][3]);
+  gp.cellZ = static_cast<int>(r.toWorld[2][3]);
   const glm::vec2 camXZ(eye.x, eye.z);
   const glm::vec2 delta = glm::abs(scene::grid::cgCellCentre(gp.ring, gp.cellX, gp.cellZ, grid.g0) - camXZ);
   gp.weight = scene::grid::cgRingWeight(gp.ring, std::max(delta.x, delta.y), grid.g0, grid.g3);
@@ -65,14 +65,14 @@ void requireParticleRecordLayout(const GlFunctions& gl, GLuint program, const st
     return value;
   };
   const GLint stride = property("particles[0].centerDensity", GL_TOP_LEVEL_ARRAY_STRIDE);
-  const GLint offset = property("particles[0].toParticle[0]", GL_OFFSET);
+  const GLint offset = property("particles[0].toWorld[0]", GL_OFFSET);
   // A variable the program does not use may be inactive (-1): only what is present is checked.
   if ((stride >= 0 && stride != static_cast<GLint>(sizeof(GpuParticleRecord))) ||
-      (offset >= 0 && offset != static_cast<GLint>(offsetof(GpuParticleRecord, toParticle))))
-    throw GlError(what + ": the GLSL particle record (stride " + std::to_string(stride) + ", toParticle at " +
+      (offset >= 0 && offset != static_cast<GLint>(offsetof(GpuParticleRecord, toWorld))))
+    throw GlError(what + ": the GLSL particle record (stride " + std::to_string(stride) + ", toWorld at " +
                   std::to_string(offset) + ") differs from GpuParticleRecord (" +
                   std::to_string(sizeof(GpuParticleRecord)) + ", " +
-                  std::to_string(offsetof(GpuParticleRecord, toParticle)) + ")");
+                  std::to_string(offsetof(GpuParticleRecord, toWorld)) + ")");
 }
 
 std::vector<GpuParticleRecord> ParticleBuffers::readRecords(std::size_t count) const {

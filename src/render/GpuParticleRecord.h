@@ -5,16 +5,18 @@
 // read by the particle pass, the light occlusion pass and the ray marcher.
 //
 //   centerDensity  xyz the centre (world units), w the density scale ρ;
-//   toWorld[c]     column c of R·diag(radii) (world offset = toWorld · p, p in the unit sphere);
-//                  w: [0] sunlight reaching the particle (1 until the occlusion pass writes it),
+//   toParticle[c]  column c of (R·diag(radii))⁻¹ (p = toParticle · (x − centre), p in the unit
+//                  sphere); w: [0] |toParticle · l|, l the unit direction toward the sun:
+//                     unit-sphere length per world length along l (the extinction scale of
+//                     shadow rays),
 //                     [1] bounding-sphere radius, 1.0001 · max radius (world units; a conservative
 //                         reject test never clips the surface),
-//                     [2] |toParticle · l|, l the unit direction toward the sun: unit-sphere
-//                         length per world length along l (the extinction scale of shadow rays);
-//   toParticle[c]  column c of the inverse (p = toParticle · (x − centre));
+//                     [2] sunlight reaching the particle (1 until the occlusion pass writes it);
+//   toWorld[c]     column c of R·diag(radii) (world offset = toWorld · p);
 //                  w: the grid identity of a generated particle, exact integers stored as floats
 //                     (0 for explicit particles): [0] ring · kGridLayerLimit + layer,
 //                     [1] cell x, [2] cell z.
+// The ray marcher reads the first four vec4 only.
 #include <cstddef>
 #include <vector>
 
@@ -29,8 +31,8 @@ namespace cloudlut::render {
 
 struct GpuParticleRecord {
   float centerDensity[4];
-  float toWorld[3][4];
   float toParticle[3][4];
+  float toWorld[3][4];
 };
 static_assert(sizeof(GpuParticleRecord) == 7 * 16, "GpuParticleRecord is seven vec4 (particle_common.glsl)");
 
@@ -55,7 +57,7 @@ scene::GridParticle unpackGridParticle(const GpuParticleRecord& record, const sc
 std::string particleRecordDefines();
 
 // GlError naming `what` unless the linked program's Particles block lays records out as
-// GpuParticleRecord does (array stride, offset of toParticle).
+// GpuParticleRecord does (array stride, offset of toWorld).
 void requireParticleRecordLayout(const GlFunctions& gl, GLuint program, const std::string& what);
 
 // The particle records (binding 0) and the back-to-front sort keys (binding 1, uvec2 of distance

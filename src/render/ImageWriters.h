@@ -6,7 +6,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "render/Renderer.h"
+#include "render/RenderTypes.h"
 
 namespace cloudlut::render {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Light-space occlusion (seed §5.3; shaders/occlusion.comp.glsl): the sunlight that reaches each
-// particle through the others, written into the records' sunlight slot (toWorld[0].w).
+// particle through the others, written into the records' sunlight slot (toParticle[2].w).
 //   1. the particles' bounds seen from the sun (light-space axes u, v ⟂ l);
 //   2. each particle, widened by half a tile, is listed in every tile of a kLightTiles² grid over
 //      those bounds that it covers;

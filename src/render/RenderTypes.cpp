@@ -10,8 +10,9 @@
 namespace cloudlut::render {
 
 namespace {
-// Bytes per pixel the render needs at its peak: the float framebuffer (20), its read-back
-// copy (20), the Image (20) and an encoder's copy (≤ 24).
+// Bytes per pixel the render needs at its peak: the float framebuffer (20; 20/downscale² when
+// upscaled), the upscale's output buffers (20, kept between frames), the Image (20) and an
+// encoder's copy (≤ 24).
 constexpr long double kBytesPerPixel = 84.0L;
 }  // namespace
 

@@ -188,7 +188,7 @@ struct Renderer::Impl {
     upload.upload(list, order, s.view.camera.eye, glm::normalize(s.view.lighting.sunDirection));
     occlusion.run(list.size(), s, particles.tables().unitOpticalRadius(), false);
     std::vector<float> out;
-    for (const GpuParticleRecord& r : buffers.readRecords(list.size())) out.push_back(r.toWorld[0][3]);
+    for (const GpuParticleRecord& r : buffers.readRecords(list.size())) out.push_back(r.toParticle[2][3]);
     checkGlError(gl, "reading the particles back");
     return out;
   }

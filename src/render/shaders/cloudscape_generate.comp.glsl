@@ -89,12 +89,12 @@ void main() {
     vec3 i2 = vec3(c0.z / p.radii.x, c1.z / p.radii.y, c2.z / p.radii.z);
     GpuParticle g;
     g.centerDensity = vec4(p.centre, p.density);
-    g.toWorld[0] = vec4(c0 * p.radii.x, 1.0f);
-    g.toWorld[1] = vec4(c1 * p.radii.y, 1.0001f * max(p.radii.x, max(p.radii.y, p.radii.z)));
-    g.toWorld[2] = vec4(c2 * p.radii.z, length(mat3(i0, i1, i2) * uSun));
-    g.toParticle[0] = vec4(i0, float(ring * GRID_LAYER_LIMIT + k));
-    g.toParticle[1] = vec4(i1, float(cell.x));
-    g.toParticle[2] = vec4(i2, float(cell.y));
+    g.toParticle[0] = vec4(i0, length(mat3(i0, i1, i2) * uSun));
+    g.toParticle[1] = vec4(i1, 1.0001f * max(p.radii.x, max(p.radii.y, p.radii.z)));
+    g.toParticle[2] = vec4(i2, 1.0f);  // sunlight until the occlusion pass
+    g.toWorld[0] = vec4(c0 * p.radii.x, float(ring * GRID_LAYER_LIMIT + k));
+    g.toWorld[1] = vec4(c1 * p.radii.y, float(cell.x));
+    g.toWorld[2] = vec4(c2 * p.radii.z, float(cell.y));
     particles[slot] = g;
     sortKeys[slot] = uvec2(floatBitsToUint(length(p.centre - uEye)), slot);
   }

@@ -136,6 +136,6 @@ void main() {
     }
     result = wsum > 0.0f ? sum / wsum : own;
   }
-  particles[i].toWorld[0].w = result;
+  particles[i].toParticle[2].w = result;
 #endif
 }

@@ -87,7 +87,7 @@ void main() {
   if ((uTerms & 4) != 0)
     ambient = uSkyColor * ambientScale(transmittance, od.y);
 
-  float sunlight = p.toWorld[0].w;  // sunlight reaching the particle (occlusion.comp.glsl)
+  float sunlight = p.toParticle[2].w;  // sunlight reaching the particle (occlusion.comp.glsl)
   vec3 radiance = uSunColor * (sunlight * (single + multiple)) + ambient;
   oColor = vec4(radiance, transmittance);
   if (uVolume != 0) {

@@ -4,8 +4,8 @@
 // σ·ρ·ρ̂·|M⁻¹ω|), marched with Beer–Lambert transmittance and Hillaire's energy-conserving
 // step integration, shadow rays toward the sun, and Wrenninge's multiple-scattering octaves.
 // Preceded by cloudlut_phase.glsl and particle_common.glsl (the particle records, read only; M⁻¹
-// is toParticle, toWorld[1].w the bounding-sphere radius, toWorld[2].w = |M⁻¹ l| the extinction
-// scale toward the sun). See src/render/RayMarchRenderer.h for the parameters.
+// is toParticle, toParticle[0].w = |M⁻¹ l| the extinction scale toward the sun, toParticle[1].w
+// the bounding-sphere radius). See src/render/RayMarchRenderer.h for the parameters.
 
 uniform int uCount;
 uniform vec3 uEye;
@@ -46,7 +46,7 @@ float rhoHat(vec3 p) {
 bool interval(int i, vec3 o, vec3 d, out float t0, out float t1) {
   vec3 c = particles[i].centerDensity.xyz;
   vec3 oc = o - c;
-  float bound = particles[i].toWorld[1].w;
+  float bound = particles[i].toParticle[1].w;
   float bb = dot(oc, d);
   if (dot(oc, oc) - bb * bb > bound * bound) { t0 = t1 = 0.0; return false; }
   mat3 m = toParticle(i);
@@ -148,7 +148,7 @@ void main() {
           for (int k = 0; k < sHits; ++k) {
             int i = sIndex[k];
             tau += uSigma * particles[i].centerDensity.w * rhoHat(toParticle(i) * (y - particles[i].centerDensity.xyz)) *
-                   particles[i].toWorld[2].w * sdt;
+                   particles[i].toParticle[0].w * sdt;
           }
         }
         float sun = 0.0;
