@@ -56,3 +56,63 @@ CLOUDLUT_FN float multipleScatteringFromTable(float stored, float tau) {
 CLOUDLUT_FN float ambientScale(float transmittance, float firstMatter) {
   return (1.0f - transmittance) * (1.0f - 0.5f * clamp(firstMatter, 0.0f, 1.0f));
 }
+
+// ---- The cloud lighting model (the renderer's default; docs/LIGHTING.md) -------------------
+// The seed's model shades each particle as if it were alone: sunlight from a per-particle
+// occlusion estimate, multiple scattering of the particle's own sphere at density ρ, ambient
+// scaled by a crease factor. The functions below let the light flow through the cloud: the
+// sunlight reaching each shading point comes from the optical depth of the other particles
+// toward the sun (the renderer's sun volume), and multiple scattering blends the particle's own
+// sphere with the sphere of the cloud around the point.
+
+// Fraction of a homogeneous chord of optical depth τ at which light is scattered toward the
+// viewer on average: the e^{−τt}-weighted mean of t ∈ [0, 1], 1/τ − e^{−τ}/(1 − e^{−τ})
+// (1/2 for a transparent chord, → 1/τ for an opaque one; dimensionless).
+CLOUDLUT_FN float meanScatteringFraction(float tau) {
+  if (tau < 1e-3f) return 0.5f - tau / 12.0f;
+  float e = exp(-tau);
+  return 1.0f / tau - e / (1.0f - e);
+}
+
+// Ambient radiance per unit sky radiance of a chord of optical depth τ under a uniform sky: a
+// non-absorbing medium in an isotropic uniform field holds that field's radiance everywhere,
+// so the chord adds exactly the sky it hides, 1 − e^{−τ} (dimensionless).
+CLOUDLUT_FN float uniformSkyAmbient(float tau) { return chordOpacity(tau); }
+
+// Transmittance of the sunlight's scattered part through τ of neighbouring cloud: the
+// two-stream (Eddington) transmittance 1/(1 + ¾(1 − g)τ) of a conservative slab of optical
+// thickness τ for phase asymmetry g (the mean cosine of the later phase function). It
+// lights the particle's multiple scattering where the direct beam e^{−τ} is lower.
+CLOUDLUT_FN float diffuseTransmittance(float tau, float g) {
+  return 1.0f / (1.0f + 0.75f * (1.0f - g) * max(tau, 0.0f));
+}
+
+// The cloud around a point as one homogeneous sphere (cloud scale): its diameter along the sun
+// is the optical depth of the sun-parallel column through the point, tauColumn = tauSun +
+// tauAway (toward the sun and away from it). Its density scale (dimensionless), for unit
+// optical radius sigma: tauColumn / (2σ).
+CLOUDLUT_FN float cloudSphereDensity(float tauColumn, float sigma) { return tauColumn / (2.0f * sigma); }
+
+// The point on that sphere where the column splits it (cos θS = (tauAway − tauSun)/tauColumn:
+// the sub-solar point when no cloud lies toward the sun, the anti-solar point when none lies
+// behind), turned toward the camera about the sun direction, so that the view ray `dir` enters
+// the sphere there (kept at least slightly facing the camera). Unit vector, world space; the
+// scattering tables depend only on the angles between this point, `dir` and `sun`.
+CLOUDLUT_FN vec3 cloudSphereEntry(float tauSun, float tauColumn, vec3 dir, vec3 sun) {
+  float cosS = clamp((tauColumn - 2.0f * tauSun) / max(tauColumn, 1e-6f), -1.0f, 1.0f);
+  vec3 toCamera = -dir;
+  vec3 t = toCamera - dot(toCamera, sun) * sun;
+  if (dot(t, t) < 1e-8f) t = cross(sun, abs(sun.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f));
+  t = normalize(t);
+  vec3 S = cosS * sun + sqrt(max(1.0f - cosS * cosS, 0.0f)) * t;
+  float facing = dot(S, toCamera);
+  if (facing < 0.02f) S = normalize(S + (0.02f - facing) * toCamera);
+  return S;
+}
+
+// Weight of the cloud-scale sphere against the particle's own (dimensionless, [0, 1]): the
+// share of the column's optical depth that is not the particle's own chord, 0 for a particle
+// alone, → 1 deep in a cloud.
+CLOUDLUT_FN float cloudScaleWeight(float ownColumn, float tauColumn) {
+  return clamp(1.0f - ownColumn / max(tauColumn, 1e-6f), 0.0f, 1.0f);
+}

@@ -57,7 +57,9 @@ int runRender(int argc, char** argv) {
     ("speed", "--frames: metres per frame", cxxopts::value<double>()->default_value("40"))
     ("yaw", "--frames: degrees of yaw per frame", cxxopts::value<double>()->default_value("0.2"))
     ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel", cxxopts::value<int>()->default_value("16"))
-    ("no-occlusion", "constant sunlight (no light-space occlusion)")
+    ("no-occlusion", "constant sunlight (no light-space occlusion, no sun volume shadows)")
+    ("lighting", "lighting model: cloud (sunlight per shading point, multiple scattering of the cloud around each point, ambient from the sky's opacity) or seed (the seed paper's per-particle model)", cxxopts::value<std::string>()->default_value("cloud"))
+    ("sunlight", "sunlight per particle (the seed's occlusion pass) or per shading point (the sun optical-depth volume); default: the lighting model's (seed: particle, cloud: volume)", cxxopts::value<std::string>())
     ("out", "output image: FILE.png (tone-mapped sRGB) or FILE.exr (linear RGB, A = 1 - transmittance, Z)", cxxopts::value<std::string>())
     ("width", "image width in pixels", cxxopts::value<long long>()->default_value("640"))
     ("height", "image height in pixels", cxxopts::value<long long>()->default_value("360"))
@@ -97,6 +99,9 @@ int runRender(int argc, char** argv) {
   if (settings.fragmentsPerPixel < 1 || settings.fragmentsPerPixel > 1024)
     throw UsageError("--fragments-per-pixel: expected 1 to 1024");
   settings.occlusion = args.count("no-occlusion") == 0;
+  settings.lighting = render::parseLighting(args["lighting"].as<std::string>());
+  settings.sunlight = args.count("sunlight") ? render::parseSunlight(args["sunlight"].as<std::string>())
+                                             : render::defaultSunlight(settings.lighting);
   const int frames = args["frames"].as<int>();
   if (frames < 1 || frames > 100000) throw UsageError("--frames: expected 1 to 100000");
   const double speed = args["speed"].as<double>(), yaw = args["yaw"].as<double>();

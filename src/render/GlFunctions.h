@@ -77,7 +77,10 @@ namespace cloudlut::render {
   X(PFNGLUNIFORM1UIPROC, Uniform1ui)                              \
   X(PFNGLUNIFORM2IPROC, Uniform2i)                                \
   X(PFNGLUNIFORM4FVPROC, Uniform4fv)                              \
-  X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)          \
+  X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)           \
+  X(PFNGLTEXPARAMETERFVPROC, TexParameterfv)                      \
+  X(PFNGLGETTEXIMAGEPROC, GetTexImage)                            \
+  X(PFNGLUNIFORM3IPROC, Uniform3i)                                \
   X(PFNGLGETPROGRAMRESOURCEINDEXPROC, GetProgramResourceIndex)    \
   X(PFNGLGETPROGRAMRESOURCEIVPROC, GetProgramResourceiv)
 

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/SunVolume.h"
 #include "render/VolumeResolve.h"
 
 namespace cloudlut::render {
@@ -15,15 +16,18 @@ const std::vector<std::string> kVertexFiles = {"particle_common.glsl", "particle
 const std::vector<std::string> kFragmentFiles = {"cloudlut_geometry.glsl", "cloudlut_phase.glsl",
                                                  "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
                                                  "particle_common.glsl", "volume_fragments.glsl",
-                                                 "particle.frag.glsl"};
+                                                 "sun_volume.glsl", "sun_volume_chord.glsl",
+                                                 "sun_volume_sampling.glsl", "particle.frag.glsl"};
 constexpr GLsizei kBoxVertices = 36;  // 6 faces × 2 triangles (particle.vert.glsl)
+constexpr int kSunVolumeUnit = 3;      // texture unit after the three tables (ShadingTables)
 
 }  // namespace
 
 ParticlePass::ParticlePass(const GlFunctions& gl, const GlContext& context, const io::LutSet& luts,
                            ParticleBuffers& buffers)
     : gl_(gl), buffers_(buffers), tables_(gl, context, luts) {
-  program_ = linkDrawProgram(gl, kVertexFiles, kFragmentFiles, VolumeResolve::fragmentDefines(), "particle");
+  program_ = linkDrawProgram(gl, kVertexFiles, kFragmentFiles,
+                             VolumeResolve::fragmentDefines() + SunVolume::samplingDefines(), "particle");
   requireParticleRecordLayout(gl, program_.id(), "particle program");
   gl_.GenVertexArrays(1, &vao_);
 }
@@ -31,7 +35,7 @@ ParticlePass::ParticlePass(const GlFunctions& gl, const GlContext& context, cons
 ParticlePass::~ParticlePass() { gl_.DeleteVertexArrays(1, &vao_); }
 
 void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
-                        const RenderSettings& s) {
+                        const RenderSettings& s, const SunVolume& sun, bool sunBuilt) {
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Enable(GL_CULL_FACE);
   gl_.FrontFace(GL_CCW);
@@ -57,6 +61,10 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   uniforms.set("uNoDistance", kNoDistance);
   uniforms.set("uUseOrder", useOrder ? 1 : 0);
   uniforms.set("uVolume", volume ? 1 : 0);
+  uniforms.set("uLighting", s.lighting == Lighting::Cloud ? 1 : 0);
+  uniforms.set("uSunlightVolume", sunBuilt && s.occlusion && s.sunlight == Sunlight::Volume ? 1 : 0);
+  sun.bind(uniforms, kSunVolumeUnit);
+  if (!sunBuilt) uniforms.set("uSunCascades", 0);
   buffers_.records.bind(ParticleBuffers::kRecordsBinding);
   if (buffers_.sortKeys.bytes() == 0) buffers_.sortKeys.ensure(64);
   buffers_.sortKeys.bind(ParticleBuffers::kSortKeysBinding);

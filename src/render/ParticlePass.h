@@ -18,6 +18,8 @@
 
 namespace cloudlut::render {
 
+class SunVolume;
+
 class ParticlePass {
  public:
   // Uploads the tables (ShadingTables: FileError for an unusable set) and builds the program.
@@ -32,9 +34,10 @@ class ParticlePass {
   // settings' camera, with the projection's far plane at `farPlane` and its near plane at
   // 1e-6 · farPlane): in the order of the sorted keys when `useOrder`, else in record order.
   // `volume`: the fragment lists are bound (VolumeResolve::prepare) and receive the segments.
-  // Waits for the GPU (glFinish).
+  // `sun`: the sun optical-depth volume of this frame when `sunBuilt` (else every point is
+  // unshadowed by it). Waits for the GPU (glFinish).
   void draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
-            const RenderSettings& settings);
+            const RenderSettings& settings, const SunVolume& sun, bool sunBuilt);
 
  private:
   const GlFunctions& gl_;

@@ -28,6 +28,24 @@ enum class BlendMode { Alpha, Volume };
 BlendMode parseBlendMode(const std::string& text);
 const char* toString(BlendMode mode);
 
+// The lighting model of the particle pass (docs/LIGHTING.md):
+//   Seed   seed §4.4 and §5.3 as published: sunlight per particle from the light-space
+//          occlusion, multiple scattering of the particle's own sphere at its density ρ, ambient
+//          scaled by the crease factor (first matter);
+//   Cloud  light that flows through the cloud: sunlight per shading point from the sun
+//          optical-depth volume, multiple scattering blending the particle's own sphere at the
+//          ray's density ρ·T̄ with the sphere of the cloud around the point (its column toward
+//          and away from the sun), ambient sky·(1 − e^{−τ}) (cloudlut_shading.glsl).
+enum class Lighting { Seed, Cloud };
+// Where the sunlight reaching a particle is evaluated: once per particle (seed §5.3, the
+// occlusion pass) or per shading point (the sun optical-depth volume).
+enum class Sunlight { Particle, Volume };
+// "seed" / "cloud", "particle" / "volume"; UsageError naming `option` otherwise.
+Lighting parseLighting(const std::string& text, const std::string& option = "--lighting");
+Sunlight parseSunlight(const std::string& text, const std::string& option = "--sunlight");
+const char* toString(Lighting lighting);
+const char* toString(Sunlight sunlight);
+
 struct RenderSettings {
   int width = 640;
   int height = 360;
@@ -38,7 +56,14 @@ struct RenderSettings {
   bool occlusion = true;        // light-space occlusion (sunlight 1 otherwise)
   bool smoothOcclusion = true;  // its density-weighted smoothing pass
   int fragmentsPerPixel = kDefaultFragmentsPerPixel;  // volume: node pool size per low-res pixel
+  Lighting lighting = Lighting::Cloud;
+  Sunlight sunlight = Sunlight::Volume;
 };
+
+// The sunlight each lighting model takes unless told otherwise.
+inline Sunlight defaultSunlight(Lighting lighting) {
+  return lighting == Lighting::Seed ? Sunlight::Particle : Sunlight::Volume;
+}
 
 struct Image {
   int width = 0;
@@ -63,7 +88,7 @@ void checkImageSize(long long width, long long height);
 struct RenderStats {
   double uploadSeconds = 0;     // particle buffer upload (explicit particles)
   double generateSeconds = 0;   // GPU generation + sort (cloudscapes)
-  double occlusionSeconds = 0;  // light-space tiling, occlusion, smoothing
+  double occlusionSeconds = 0;  // light-space tiling, occlusion, smoothing; the sun volume
   double renderSeconds = 0;     // shading + blending: draw (+ volume resolve), glFinish
   double resolveSeconds = 0;    // of which the volume resolve
   double upscaleSeconds = 0;    // bilateral upscale (GPU), glFinish
@@ -74,6 +99,7 @@ struct RenderStats {
   std::size_t fragmentOverflow = 0;  // volume: fragments alpha-blended for want of pool room
   std::size_t truncatedPixels = 0;   // volume: pixels with more than kMaxSegmentsPerPixel segments
   std::size_t tileOverflow = 0;      // occlusion: tile-list nodes dropped
+  std::size_t sunFootprintOverflow = 0;  // sun volume: particle-cascade pairs left to a coarser cascade
 };
 
 }  // namespace cloudlut::render

@@ -16,7 +16,10 @@
 #include "render/ParticlePass.h"
 #include "render/ParticleUpload.h"
 #include "render/Stopwatch.h"
+#include "render/SunVolume.h"
+#include "render/SunVolumeGrid.h"
 #include "render/Upscale.h"
+#include "scene/CloudscapeGrid.h"
 #include "render/VolumeResolve.h"
 
 namespace cloudlut::render {
@@ -41,6 +44,7 @@ struct Renderer::Impl {
   ParticleUpload upload;
   CloudscapeGeneration generation;
   LightOcclusion occlusion;
+  SunVolume sunVolume;
   ParticlePass particles;
   VolumeResolve volume;
   Upscale upscale;
@@ -53,6 +57,7 @@ struct Renderer::Impl {
         upload(budget, buffers),
         generation(gl, budget, buffers),
         occlusion(gl, budget, buffers),
+        sunVolume(gl, c, budget, buffers),
         particles(gl, c, luts, buffers),
         volume(gl, budget),
         upscale(gl, budget) {
@@ -87,18 +92,34 @@ struct Renderer::Impl {
                        " pixels per side");
   }
 
-  void occlude(std::size_t count, const RenderSettings& s, RenderStats* stats) {
+  // The sunlight of the frame: the seed's per-particle occlusion when the settings take the
+  // sunlight per particle, the sun optical-depth volume over `grid` when the lighting or the
+  // sunlight needs it. Returns whether the volume was built.
+  bool illuminate(std::size_t count, const SunVolumeGrid& grid, const RenderSettings& s, RenderStats* stats) {
     const Stopwatch clock;
-    const std::size_t dropped = occlusion.run(count, s, particles.tables().unitOpticalRadius(), stats != nullptr);
+    std::size_t dropped = 0, skipped = 0;
+    if (s.sunlight == Sunlight::Particle)
+      dropped = occlusion.run(count, s, particles.tables().unitOpticalRadius(), stats != nullptr);
+    const bool sun = needsSunVolume(s) && count > 0;
+    if (sun)
+      skipped = sunVolume.build(grid, count, particles.tables().opticalDepthTexture(),
+                                particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(),
+                                stats != nullptr);
     gl.Finish();
     if (stats) {
       stats->occlusionSeconds = clock.seconds();
       if (s.occlusion && count > 0) stats->tileOverflow = dropped;
+      stats->sunFootprintOverflow = skipped;
     }
+    return sun;
+  }
+
+  static bool needsSunVolume(const RenderSettings& s) {
+    return s.lighting == Lighting::Cloud || (s.occlusion && s.sunlight == Sunlight::Volume);
   }
 
   // Shading and blending at 1/downscale resolution, the volume resolve, the upscale, read-back.
-  Image draw(std::size_t count, bool useOrder, float farPlane, const RenderSettings& s, RenderStats* stats) {
+  Image draw(std::size_t count, bool useOrder, float farPlane, const RenderSettings& s, bool sun, RenderStats* stats) {
     const int w = (s.width + s.downscale - 1) / s.downscale, h = (s.height + s.downscale - 1) / s.downscale;
     requireTargetSize(w, h, s);
     const bool blendVolume = s.blend == BlendMode::Volume;
@@ -115,7 +136,7 @@ struct Renderer::Impl {
     gl.ClearBufferfv(GL_COLOR, 1, clearDistance);
 
     const Stopwatch drawClock;
-    particles.draw(count, useOrder, blendVolume, farPlane, w, h, s);
+    particles.draw(count, useOrder, blendVolume, farPlane, w, h, s, sunVolume, sun);
     if (blendVolume) {
       const Stopwatch resolveClock;
       volume.resolve(target.colourTexture());
@@ -156,8 +177,8 @@ struct Renderer::Impl {
     }
     const float farPlane = upload.upload(list, order, eye, glm::normalize(s.view.lighting.sunDirection));
     if (stats) stats->uploadSeconds = clock.seconds();
-    occlude(list.size(), s, stats);
-    return draw(list.size(), false, farPlane, s, stats);
+    const bool sun = illuminate(list.size(), needsSunVolume(s) ? sunGridFor(list, s) : SunVolumeGrid{}, s, stats);
+    return draw(list.size(), false, farPlane, s, sun, stats);
   }
 
   Image renderCloudscape(const scene::CloudType& cloud, const scene::QualityPreset& q, const RenderSettings& s,
@@ -171,9 +192,35 @@ struct Renderer::Impl {
       stats->generateSeconds = clock.seconds();
       stats->validCells = g.cells;
     }
-    occlude(g.count, s, stats);
-    return draw(g.count, alpha, g.farPlane, s, stats);
+    const bool sun = illuminate(g.count, needsSunVolume(s) ? sunGridFor(cloud, q, s) : SunVolumeGrid{}, s, stats);
+    return draw(g.count, alpha, g.farPlane, s, sun, stats);
   }
+
+  // The sun volume's grid around explicit particles: their bounding spheres, columns a quarter of
+  // the smallest particle radius apart (at most 256 per side).
+  static SunVolumeGrid sunGridFor(const std::vector<scene::Particle>& list, const RenderSettings& s) {
+    glm::vec3 lo(0.0f), hi(0.0f);
+    float smallest = 1.0f;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const scene::Particle& p = list[i];
+      const float reach = std::max({p.radii.x, p.radii.y, p.radii.z});
+      const float least = std::min({p.radii.x, p.radii.y, p.radii.z});
+      lo = i == 0 ? p.center - reach : glm::min(lo, p.center - reach);
+      hi = i == 0 ? p.center + reach : glm::max(hi, p.center + reach);
+      smallest = i == 0 ? least : std::min(smallest, least);
+    }
+    return sunVolumeGridForBounds(lo, hi, s.view.lighting.sunDirection, kSunColumnsPerRadius * smallest);
+  }
+
+  // Around the camera for a cloud layer: the layer's heights widened by the largest particle
+  // radius, cascades from a quarter of the ring-0 cell.
+  static SunVolumeGrid sunGridFor(const scene::CloudType& cloud, const scene::QualityPreset& q, const RenderSettings& s) {
+    const scene::GridParameters g = scene::gridParameters(cloud, q);
+    const glm::vec2 r = scene::grid::cgMaxRadii(q.rings - 1, g.g0, g.g1, g.g2);
+    return sunVolumeGridForLayer(s.view.camera.eye, cloud.cloudBase - r.y, cloud.cloudTop + r.y,
+                                 s.view.lighting.sunDirection, kSunColumnsPerRadius * cloud.cellSize, kSunCascadesMax);
+  }
+  static constexpr float kSunColumnsPerRadius = 0.25f;  // column spacing in units of the particle radius
 
   scene::CpuGeneration generateOnGpu(const scene::CloudType& cloud, const scene::QualityPreset& q,
                                      const RenderSettings& s) {

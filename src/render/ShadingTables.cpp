@@ -1,8 +1,10 @@
 #include "render/ShadingTables.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/Errors.h"
+#include "core/Glsl.h"
 #include "core/TableLookup.h"
 
 namespace cloudlut::render {
@@ -15,6 +17,19 @@ const Table4D& requireTable(const io::LutSet& luts, const std::string& name) {
     throw FileError(luts.dir.string(), "has no '" + name + "' table (the renderer needs optical_depth, "
                                        "single_scattering and multiple_scattering)");
   return it->second.table;
+}
+
+// ∫ μ P(μ) dω = 2π ∫_{-1}^{1} μ P(μ) dμ (midpoint rule in θ on 4096 steps: the forward peaks of
+// the cloud phase functions are a degree wide).
+float meanCosine(int kind, float param) {
+  constexpr int kSteps = 4096;
+  double sum = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    const double theta = (i + 0.5) * 3.14159265358979323846 / kSteps;
+    const double mu = std::cos(theta);
+    sum += mu * glsl::phaseFunction(kind, static_cast<float>(mu), param) * std::sin(theta);
+  }
+  return static_cast<float>(2.0 * 3.14159265358979323846 * sum * 3.14159265358979323846 / kSteps);
 }
 
 }  // namespace
@@ -48,6 +63,21 @@ ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, co
   }
   if (firstPhaseKind_ < 0 || firstPhaseKind_ > 3 || !std::isfinite(firstPhaseParam_))
     throw FileError(luts_, "single_scattering: unknown first_phase kind " + std::to_string(firstPhaseKind_));
+
+  const nlohmann::json later = lm.parameters().value("later_phase", nlohmann::json::object());
+  int laterKind = 2;
+  float laterParam = 0.7f;
+  try {
+    if (later.is_object()) {
+      laterKind = later.value("kind", 2);
+      laterParam = later.value("param", 0.7f);
+    }
+  } catch (const nlohmann::json::exception&) {
+    throw FileError(luts_, "multiple_scattering: later_phase.kind/param are not numbers");
+  }
+  if (laterKind < 0 || laterKind > 3 || !std::isfinite(laterParam))
+    throw FileError(luts_, "multiple_scattering: unknown later_phase kind " + std::to_string(laterKind));
+  laterAsymmetry_ = std::clamp(meanCosine(laterKind, laterParam), 0.0f, 0.99f);
 
   try {
     opticalDepth_ = upload(context, od, false);
@@ -108,6 +138,7 @@ void ShadingTables::bind(const ProgramUniforms& uniforms) const {
   uniforms.set("uUnitOpticalRadius", unitOpticalRadius_);
   uniforms.set("uFirstPhaseKind", firstPhaseKind_);
   uniforms.set("uFirstPhaseParam", firstPhaseParam_);
+  uniforms.set("uLaterAsymmetry", laterAsymmetry_);
 }
 
 }  // namespace cloudlut::render

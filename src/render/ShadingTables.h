@@ -27,9 +27,15 @@ class ShadingTables {
   ShadingTables& operator=(const ShadingTables&) = delete;
 
   float unitOpticalRadius() const { return unitOpticalRadius_; }
+  // Mean cosine ∫ μ P(μ) dω of the multiple table's later phase function (its `later_phase`;
+  // dimensionless): the asymmetry of the light's diffuse transport between particles.
+  float laterPhaseAsymmetry() const { return laterAsymmetry_; }
+  GLuint opticalDepthTexture() const { return opticalDepth_.texture; }
+  const glm::vec4& opticalDepthDims() const { return opticalDepth_.dims; }
 
   // Binds the tables to texture units 0 to 2 and sets the particle program's uniforms that
-  // describe them (uOpticalDepth*, uSingle*, uMultiple*, uUnitOpticalRadius, uFirstPhase*).
+  // describe them (uOpticalDepth*, uSingle*, uMultiple*, uUnitOpticalRadius, uFirstPhase*,
+  // uLaterAsymmetry).
   void bind(const ProgramUniforms& uniforms) const;
 
  private:
@@ -48,6 +54,7 @@ class ShadingTables {
   float unitOpticalRadius_ = 0;
   int firstPhaseKind_ = 2;
   float firstPhaseParam_ = 0.9f;
+  float laterAsymmetry_ = 0.0f;
 };
 
 }  // namespace cloudlut::render

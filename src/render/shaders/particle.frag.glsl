@@ -1,7 +1,9 @@
 // particle.frag.glsl — shades one particle along one view ray with the tables (seed §4.4, §5.4).
 // Preceded by cloudlut_geometry.glsl, cloudlut_phase.glsl, cloudlut_sampling.glsl,
-// cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl and
-// volume_fragments.glsl.
+// cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl,
+// volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl and sun_volume_sampling.glsl.
+// Two lighting models (render/RenderTypes.h, docs/LIGHTING.md): the seed's (uLighting 0) and the
+// cloud model (uLighting 1), whose equations are cloudlut_shading.glsl's.
 //
 // Output 0 (RGBA32F, blended ONE/SRC_ALPHA for colour, ZERO/SRC_ALPHA for alpha):
 //   rgb = radiance scattered toward the camera, a = transmittance of the particle (alpha mode;
@@ -28,6 +30,29 @@ uniform float uFirstPhaseParam;
 uniform float uMinOpacityForDistance;
 uniform float uNoDistance;
 uniform int uVolume;  // 1: volume-aware blending (store the segment in the pixel's list)
+uniform int uLighting;         // 0 seed (§4.4, §5.3), 1 cloud
+uniform int uSunlightVolume;   // 1: sunlight per shading point from the sun volume, 0: per particle
+uniform float uLaterAsymmetry; // mean cosine of the later phase function (diffuseTransmittance)
+
+// Optical depth (dimensionless) of the particle's whole chord along the sun through the
+// particle-space point px (the optical-depth table at that chord; 0 when px is outside).
+float ownSunColumn(vec3 px, vec3 dl, float rho) {
+  float a = dot(dl, dl), b = dot(px, dl), c = dot(px, px) - 1.0;
+  float disc = b * b - a * c;
+  if (disc <= 0.0) return 0.0;
+  vec3 S = normalize(px + ((-b + sqrt(disc)) / a) * dl);
+  vec3 v = -normalize(dl);
+  vec2 od = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(S, v), uOpticalDepthDims).xy;
+  return particleOpticalDepth(rho, uUnitOpticalRadius, chordLength(S, v), od.x);
+}
+
+// The multiple table's stored mean source at (S, v, l) and density ρ; below the table's least
+// density the source is taken proportional to ρ (it vanishes with the medium).
+float multipleSourceAt(vec3 S, vec3 v, vec3 l, float rho) {
+  float rhoMin = exp2(uMultipleAxes.x);
+  vec4 x = scatteringAxes(S, v, l, max(rho, rhoMin), uMultipleAxes.x, uMultipleAxes.y, uMultipleAxes.z);
+  return cloudlutSample4D(uMultiple, x, uMultipleDims).x * min(rho / rhoMin, 1.0);
+}
 
 layout(r32ui, binding = 0) uniform coherent uimage2D uHeads;  // volume_fragments.glsl lists
 
@@ -68,27 +93,60 @@ void main() {
   float tau = particleOpticalDepth(rho, uUnitOpticalRadius, chord, od.x);
   float transmittance = exp(-tau);
 
+  // Where the light is scattered on average along the chord: its first matter, then the
+  // e^{−τt}-weighted mean of the rest (world point; particle space px).
+  float firstMatter = clamp(od.y, 0.0, 1.0);
+  float tMean = tEnter + (tExit - tEnter) * (firstMatter + (1.0 - firstMatter) * meanScatteringFraction(tau));
+  vec3 xMean = uEye + dir * tMean;
+
+  // Sunlight reaching the particle: per particle from the occlusion pass (seed §5.3), or at the
+  // mean scattering point from the sun volume, less the particle's own chord there.
+  float sunlight = p.toParticle[2].w;
+  float tauOutside = 0.0;
+  if (uSunlightVolume != 0) {
+    tauOutside = sunOpticalDepthExcluding(xMean, p.centerDensity.xyz, toParticle, rho, uOpticalDepth,
+                                          uOpticalDepthDims, uUnitOpticalRadius);
+    sunlight = exp(-tauOutside);
+  }
+
   // Single scattering: the mean source of the homogeneous sphere of the ray's mean density,
-  // times the phase function of the physical (world-space) scattering angle. Multiple: the
-  // mean source of the sphere of density rho. Both carry the ray's own opacity 1 − e^{−τ}.
+  // times the phase function of the physical (world-space) scattering angle, times the ray's
+  // own opacity 1 − e^{−τ} (both models).
   float single = 0.0;
   if ((uTerms & 1) != 0) {
     vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleAxes.x, uSingleAxes.y, uSingleAxes.z);
     single = phaseFunction(uFirstPhaseKind, dot(dir, uSunDirection), uFirstPhaseParam) *
              singleScatteringFromTable(cloudlutSample4D(uSingle, x, uSingleDims).x, tau);
   }
+  // Multiple scattering, per unit sun irradiance, already lit (the sunlight factor included).
+  //   seed:  the mean source of the particle's sphere at ρ, times the sunlight;
+  //   cloud: the particle's sphere at the ray's density ρ·T̄, lit by the larger of the direct and
+  //          the diffuse transmittance through the cloud toward the sun, blended with the cloud
+  //          sphere of the column through the mean scattering point (cloudSphereEntry,
+  //          cloudSphereDensity) by the share of that column that is not the particle's own.
   float multiple = 0.0;
   if ((uTerms & 2) != 0) {
-    vec4 x = scatteringAxes(S, v, l, rho, uMultipleAxes.x, uMultipleAxes.y, uMultipleAxes.z);
-    multiple = multipleScatteringFromTable(cloudlutSample4D(uMultiple, x, uMultipleDims).x, tau);
+    if (uLighting == 0) {
+      vec4 x = scatteringAxes(S, v, l, rho, uMultipleAxes.x, uMultipleAxes.y, uMultipleAxes.z);
+      multiple = sunlight * multipleScatteringFromTable(cloudlutSample4D(uMultiple, x, uMultipleDims).x, tau);
+    } else {
+      float lit = max(sunlight, diffuseTransmittance(tauOutside, uLaterAsymmetry));
+      float own = lit * multipleScatteringFromTable(multipleSourceAt(S, v, l, rho * od.x), tau);
+      vec2 column = sunOpticalDepthAndColumn(xMean);
+      vec3 entry = cloudSphereEntry(column.x, column.y, dir, uSunDirection);
+      float rhoCloud = cloudSphereDensity(max(column.y, tau), uUnitOpticalRadius);
+      float cloud = multipleScatteringFromTable(multipleSourceAt(entry, dir, uSunDirection, rhoCloud), tau);
+      float ownColumn = ownSunColumn(toParticle * (xMean - p.centerDensity.xyz), toParticle * uSunDirection, rho);
+      multiple = mix(own, cloud, cloudScaleWeight(ownColumn, column.y));
+    }
   }
-  // Ambient: sky radiance, scaled by the opacity and by f(distance to the first matter).
+  // Ambient: the sky's radiance, scaled by the crease factor of the first matter (seed), or by
+  // the opacity alone, the exact value under a uniform sky (cloud).
   vec3 ambient = vec3(0.0);
   if ((uTerms & 4) != 0)
-    ambient = uSkyColor * ambientScale(transmittance, od.y);
+    ambient = uSkyColor * (uLighting == 0 ? ambientScale(transmittance, od.y) : uniformSkyAmbient(tau));
 
-  float sunlight = p.toParticle[2].w;  // sunlight reaching the particle (occlusion.comp.glsl)
-  vec3 radiance = uSunColor * (sunlight * (single + multiple)) + ambient;
+  vec3 radiance = uSunColor * (sunlight * single + multiple) + ambient;
   oColor = vec4(radiance, transmittance);
   if (uVolume != 0) {
     uint node = atomicAdd(fragCount, 1u);

@@ -1,0 +1,126 @@
+#include "render/SunVolume.h"
+
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/Errors.h"
+#include "render/ShaderSources.h"
+
+namespace cloudlut::render {
+
+namespace {
+
+constexpr GLuint kDeltasBinding = 5;
+constexpr GLuint kTauImageUnit = 2;
+constexpr std::size_t kCountersBytes = 16;  // footprintOverflow and three pad words
+
+const std::vector<std::string> kBuildFiles = {"cloudlut_geometry.glsl", "cloudlut_sampling.glsl",
+                                              "cloudlut_shading.glsl",  "particle_common.glsl",
+                                              "sun_volume.glsl",        "sun_volume_chord.glsl",
+                                              "sun_volume_build.comp.glsl"};
+
+std::string buildDefines(int stage) {
+  return glslDefine("STAGE", stage) + glslDefine("GROUP_SIZE", SunVolume::kGroupSize) +
+         glslDefine("SUN_CASCADES_MAX", kSunCascadesMax) + glslDefine("SUN_FOOTPRINT_MAX", kSunFootprintMax) +
+         "#define SUN_FIXED_SCALE " + std::to_string(kSunFixedScale) + "\n" + particleRecordDefines();
+}
+
+}  // namespace
+
+std::string SunVolume::samplingDefines() { return glslDefine("SUN_CASCADES_MAX", kSunCascadesMax); }
+
+SunVolume::SunVolume(const GlFunctions& gl, const GlContext& context, const StorageBudget& budget,
+                     ParticleBuffers& buffers)
+    : gl_(gl), context_(context), budget_(budget), buffers_(buffers), deltas_(gl) {
+  for (int stage = 0; stage < 2; ++stage) {
+    stages_[stage] = linkComputeProgram(gl, kBuildFiles, buildDefines(stage));
+    requireParticleRecordLayout(gl, stages_[stage].id(), "sun_volume_build.comp.glsl");
+  }
+}
+
+SunVolume::~SunVolume() {
+  if (texture_) gl_.DeleteTextures(1, &texture_);
+}
+
+std::size_t SunVolume::build(const SunVolumeGrid& grid, std::size_t count, GLuint opticalDepthTexture,
+                             const glm::vec4& opticalDepthDims, float sigma, bool countOverflow) {
+  grid_ = grid;
+  const glm::ivec3 d = grid.dims;
+  const glm::ivec3 texDims(d.x, d.y, d.z * grid.cascades);
+  const std::size_t columns = static_cast<std::size_t>(d.x) * d.y * grid.cascades;
+  const long double bytes = kCountersBytes + static_cast<long double>(columns) * (d.z + 1) * 4.0L;
+  budget_.require(bytes, "the sun optical-depth volume (" + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" +
+                             std::to_string(d.z) + ", " + std::to_string(grid.cascades) + " cascades)");
+  if (texDims != textureDims_) {
+    if (texture_) gl_.DeleteTextures(1, &texture_);
+    texture_ = 0;
+    texture_ = createFloatTexture3D(gl_, context_, "the sun optical-depth volume", texDims.x, texDims.y, texDims.z, 1,
+                                    nullptr);
+    // Outside the columns nothing shadows: border 0 across the columns; the slices are clamped
+    // by the sampler itself (cascades are stacked along them).
+    const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    gl_.TexParameterfv(GL_TEXTURE_3D, GL_TEXTURE_BORDER_COLOR, border);
+    gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    gl_.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    textureDims_ = texDims;
+  }
+  deltas_.ensure(static_cast<std::size_t>(bytes));
+  const GLuint zero = 0;
+  gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, deltas_.id());
+  gl_.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+
+  buffers_.records.bind(ParticleBuffers::kRecordsBinding);
+  deltas_.bind(kDeltasBinding);
+  gl_.BindImageTexture(kTauImageUnit, texture_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+  gl_.ActiveTexture(GL_TEXTURE0);
+  gl_.BindTexture(GL_TEXTURE_3D, opticalDepthTexture);
+  for (int stage = 0; stage < 2; ++stage) {
+    const GlProgram& p = stages_[stage];
+    gl_.UseProgram(p.id());
+    const ProgramUniforms u(gl_, p.id());
+    gl_.Uniform1ui(p.uniform("uCount"), static_cast<GLuint>(count));
+    u.set("uSun", grid.sun);
+    u.set("uSigma", sigma);
+    u.set("uOpticalDepth", 0);
+    u.set("uOpticalDepthDims", opticalDepthDims);
+    u.set("uCascades", grid.cascades);
+    gl_.Uniform3i(p.uniform("uDims"), d.x, d.y, d.z);
+    gl_.UniformMatrix4fv(p.uniform("uToGrid"), grid.cascades, GL_FALSE, glm::value_ptr(grid.toGrid[0]));
+    gl_.UniformMatrix4fv(p.uniform("uToWorld"), grid.cascades, GL_FALSE, glm::value_ptr(grid.toWorld[0]));
+    const std::size_t threads = stage == 0 ? count : columns;
+    if (threads > 0) gl_.DispatchCompute(groupsFor(threads, kGroupSize), 1, 1);
+    fullBarrier(gl_);
+  }
+  std::size_t overflow = 0;
+  if (countOverflow) {
+    GLuint skipped = 0;
+    deltas_.read(0, sizeof skipped, &skipped);
+    overflow = skipped;
+  }
+  checkGlError(gl_, "building the sun optical-depth volume");
+  return overflow;
+}
+
+void SunVolume::bind(const ProgramUniforms& uniforms, int unit) const {
+  gl_.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+  gl_.BindTexture(GL_TEXTURE_3D, texture_);
+  uniforms.set("uSunTau", unit);
+  uniforms.set("uSunCascades", texture_ ? grid_.cascades : 0);
+  gl_.Uniform3i(uniforms.location("uSunDims"), grid_.dims.x, grid_.dims.y, grid_.dims.z);
+  gl_.UniformMatrix4fv(uniforms.location("uSunToGrid"), grid_.cascades, GL_FALSE, glm::value_ptr(grid_.toGrid[0]));
+  gl_.UniformMatrix4fv(uniforms.location("uSunToWorld"), grid_.cascades, GL_FALSE, glm::value_ptr(grid_.toWorld[0]));
+  uniforms.set("uSunColumns", grid_.sun);
+}
+
+std::vector<float> SunVolume::readBack() const {
+  std::vector<float> out(static_cast<std::size_t>(textureDims_.x) * textureDims_.y * textureDims_.z);
+  if (out.empty()) return out;
+  gl_.BindTexture(GL_TEXTURE_3D, texture_);
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
+  gl_.GetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, out.data());
+  checkGlError(gl_, "reading the sun optical-depth volume back");
+  return out;
+}
+
+}  // namespace cloudlut::render

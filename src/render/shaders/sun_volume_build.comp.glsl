@@ -1,0 +1,104 @@
+// sun_volume_build.comp.glsl — fills the sun optical-depth volume (sun_volume.glsl) from the
+// particles. Preceded by cloudlut_geometry.glsl, cloudlut_sampling.glsl, cloudlut_shading.glsl,
+// particle_common.glsl, sun_volume.glsl and the defines STAGE, SUN_CASCADES_MAX,
+// SUN_FOOTPRINT_MAX and SUN_FIXED_SCALE (render/SunVolume.cpp):
+//   STAGE 0  one invocation per particle: for every column of every cascade its bounding sphere
+//            shadows, the chord of the column's sun ray through the ellipsoid, its optical depth
+//            from the optical-depth table (seed §4.1) and the two deltas of its ramp, added as
+//            fixed-point integers (order-independent, so the volume does not depend on the
+//            order or the timing of the invocations);
+//   STAGE 1  one invocation per column: the double prefix sum from the sun side, τ at every
+//            slice stored into the volume texture; the deltas are cleared for the next frame.
+
+layout(local_size_x = GROUP_SIZE) in;
+
+uniform uint uCount;
+uniform vec3 uSun;               // unit, toward the sun (world)
+uniform float uSigma;            // unit optical radius β·R of the optical-depth table
+uniform sampler3D uOpticalDepth;
+uniform vec4 uOpticalDepthDims;
+uniform int uCascades;
+uniform ivec3 uDims;             // columns Nu, Nv and slices Nw of one cascade
+uniform mat4 uToGrid[SUN_CASCADES_MAX];
+uniform mat4 uToWorld[SUN_CASCADES_MAX];
+
+layout(std430, binding = 5) buffer SunDeltas {
+  uint footprintOverflow;        // particle-cascade pairs skipped: footprint over SUN_FOOTPRINT_MAX
+  uint pad0, pad1, pad2;
+  int deltas[];                  // per cascade, column (i, j): Nw + 1 slots, slot m = integer slice m
+};
+
+layout(r32f, binding = 2) uniform writeonly image3D uSunTau;
+
+int columnBase(int cascade, int i, int j) {
+  return ((cascade * uDims.y + j) * uDims.x + i) * (uDims.z + 1);
+}
+
+// Adds e·(1 − f) at slice floor(w) and e·f at floor(w) + 1 (sunVolumeDeltaSplit). A delta at
+// slice m only changes τ below it (k < m), so m ≤ 0 is dropped; the grid holds every particle,
+// so m > Nw is clamped (it cannot occur but for rounding).
+void addDelta(int base, float w, float e) {
+  vec2 split = sunVolumeDeltaSplit(w);
+  int m = int(floor(w));
+  for (int s = 0; s < 2; ++s) {
+    int slot = min(m + s, uDims.z);
+    if (slot <= 0) continue;
+    int value = int(round(clamp(e * split[s], -1.0e4, 1.0e4) * SUN_FIXED_SCALE));
+    if (value != 0) atomicAdd(deltas[base + slot], value);
+  }
+}
+
+#if STAGE == 0
+void main() {
+  uint index = gl_GlobalInvocationID.x;
+  if (index >= uCount) return;
+  GpuParticle p = particles[index];
+  float rho = p.centerDensity.w;
+  if (!(rho > 0.0)) return;
+  vec3 centre = p.centerDensity.xyz;
+  mat3 toParticle = mat3(p.toParticle[0].xyz, p.toParticle[1].xyz, p.toParticle[2].xyz);
+  float reach = p.toParticle[1].w;  // bounding-sphere radius (particle_common.glsl)
+  for (int k = 0; k < uCascades; ++k) {
+    vec3 g = (uToGrid[k] * vec4(centre, 1.0)).xyz;
+    // Half-widths in (u, v) of the shadow of the bounding sphere: the support function of a
+    // sphere of radius `reach` along the rows of the (linear) map.
+    vec2 extent = reach * vec2(length(vec3(uToGrid[k][0][0], uToGrid[k][1][0], uToGrid[k][2][0])),
+                             length(vec3(uToGrid[k][0][1], uToGrid[k][1][1], uToGrid[k][2][1])));
+    ivec2 lo = max(ivec2(ceil(g.xy - extent)), ivec2(0));
+    ivec2 hi = min(ivec2(floor(g.xy + extent)), uDims.xy - 1);
+    if (hi.x < lo.x || hi.y < lo.y) continue;
+    if ((hi.x - lo.x + 1) * (hi.y - lo.y + 1) > SUN_FOOTPRINT_MAX) {
+      atomicAdd(footprintOverflow, 1u);
+      continue;
+    }
+    float dwds = (uToGrid[k] * vec4(uSun, 0.0)).z;  // slices per world unit along the sun ray
+    for (int j = lo.y; j <= hi.y; ++j)
+      for (int i = lo.x; i <= hi.x; ++i) {
+        float tau, wFirst, wFar;
+        if (!sunColumnChord(uOpticalDepth, uOpticalDepthDims, uSigma, uToWorld[k], dwds, vec2(i, j), centre,
+                            toParticle, rho, uSun, tau, wFirst, wFar))
+          continue;
+        float e = tau / max(wFirst - wFar, 1e-6);
+        int base = columnBase(k, i, j);
+        addDelta(base, wFirst, e);
+        addDelta(base, wFar, -e);
+      }
+  }
+}
+#else
+void main() {
+  int columns = uDims.x * uDims.y;
+  int id = int(gl_GlobalInvocationID.x);
+  if (id >= columns * uCascades) return;
+  int cascade = id / columns, i = id % uDims.x, j = (id / uDims.x) % uDims.y;
+  int base = columnBase(cascade, i, j);
+  float slope = 0.0, tau = 0.0;
+  for (int m = uDims.z; m >= 1; --m) {
+    slope += float(deltas[base + m]) / SUN_FIXED_SCALE;
+    deltas[base + m] = 0;
+    tau += slope;
+    imageStore(uSunTau, ivec3(i, j, cascade * uDims.z + m - 1), vec4(max(tau, 0.0)));
+  }
+  deltas[base] = 0;
+}
+#endif

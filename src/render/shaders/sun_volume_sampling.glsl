@@ -1,0 +1,74 @@
+// sun_volume_sampling.glsl — reading the sun optical-depth volume (sun_volume.glsl) in a shader
+// (GLSL only). Bind it with SunVolume::bind. Requires SUN_CASCADES_MAX, sun_volume.glsl and
+// sun_volume_chord.glsl. With uSunCascades = 0 (no volume built) every point is unshadowed.
+
+uniform sampler3D uSunTau;       // R32F, cascades stacked along the depth; S, T clamp to border 0
+uniform int uSunCascades;
+uniform ivec3 uSunDims;          // columns Nu, Nv and slices Nw of one cascade
+uniform mat4 uSunToGrid[SUN_CASCADES_MAX];
+uniform mat4 uSunToWorld[SUN_CASCADES_MAX];
+uniform vec3 uSunColumns;        // unit direction of the columns (the sun, raised off the horizon if need be)
+
+// Optical depth (dimensionless) toward the sun of the particles in front of world point x,
+// from the finest cascade whose columns hold x (trilinear; a point outside every cascade is
+// unshadowed; above the top slice it takes the top's value, below the bottom the bottom's).
+float sunOpticalDepth(vec3 x) {
+  for (int k = 0; k < uSunCascades; ++k) {
+    vec3 g = (uSunToGrid[k] * vec4(x, 1.0)).xyz;
+    vec2 inner = vec2(uSunDims.xy) - 1.0;
+    if (g.x < 0.0 || g.y < 0.0 || g.x > inner.x || g.y > inner.y) continue;
+    float w = clamp(g.z, 0.0, float(uSunDims.z) - 1.0);
+    vec3 tc = vec3((g.xy + 0.5) / vec2(uSunDims.xy),
+                   (float(k * uSunDims.z) + w + 0.5) / float(uSunDims.z * uSunCascades));
+    return texture(uSunTau, tc).r;
+  }
+  return 0.0;
+}
+
+// (τ toward the sun at x, τ of the whole column through x): the column's value at its far end
+// (slice 0), so that τ_column − τ is the optical depth from x away from the sun.
+vec2 sunOpticalDepthAndColumn(vec3 x) {
+  for (int k = 0; k < uSunCascades; ++k) {
+    vec3 g = (uSunToGrid[k] * vec4(x, 1.0)).xyz;
+    vec2 inner = vec2(uSunDims.xy) - 1.0;
+    if (g.x < 0.0 || g.y < 0.0 || g.x > inner.x || g.y > inner.y) continue;
+    float w = clamp(g.z, 0.0, float(uSunDims.z) - 1.0);
+    vec2 xy = (g.xy + 0.5) / vec2(uSunDims.xy);
+    float depth = float(uSunDims.z * uSunCascades);
+    float tau = texture(uSunTau, vec3(xy, (float(k * uSunDims.z) + w + 0.5) / depth)).r;
+    float column = texture(uSunTau, vec3(xy, (float(k * uSunDims.z) + 0.5) / depth)).r;
+    return vec2(tau, max(column, tau));
+  }
+  return vec2(0.0);
+}
+
+// The same optical depth less the contribution of one particle (centre, toParticle = M⁻¹,
+// density ρ) as the splat laid it into the four columns and two slices the sample filters:
+// the sunlight reaching a point of that particle from outside it (dimensionless, ≥ 0).
+float sunOpticalDepthExcluding(vec3 x, vec3 centre, mat3 toParticle, float rho, sampler3D opticalDepth,
+                               vec4 opticalDepthDims, float sigma) {
+  for (int k = 0; k < uSunCascades; ++k) {
+    vec3 g = (uSunToGrid[k] * vec4(x, 1.0)).xyz;
+    vec2 inner = vec2(uSunDims.xy) - 1.0;
+    if (g.x < 0.0 || g.y < 0.0 || g.x > inner.x || g.y > inner.y) continue;
+    float w = clamp(g.z, 0.0, float(uSunDims.z) - 1.0);
+    vec3 tc = vec3((g.xy + 0.5) / vec2(uSunDims.xy),
+                   (float(k * uSunDims.z) + w + 0.5) / float(uSunDims.z * uSunCascades));
+    float total = texture(uSunTau, tc).r;
+    float dwds = (uSunToGrid[k] * vec4(uSunColumns, 0.0)).z;
+    vec2 base = floor(g.xy), f = g.xy - base;
+    float w0 = min(floor(w), float(uSunDims.z) - 2.0), fw = w - w0;
+    float own = 0.0;
+    for (int n = 0; n < 4; ++n) {
+      vec2 corner = vec2(float(n & 1), float(n >> 1));
+      float weight = mix(1.0 - f.x, f.x, corner.x) * mix(1.0 - f.y, f.y, corner.y);
+      float tau, wFirst, wFar;
+      if (weight <= 0.0 || !sunColumnChord(opticalDepth, opticalDepthDims, sigma, uSunToWorld[k], dwds, base + corner,
+                                           centre, toParticle, rho, uSunColumns, tau, wFirst, wFar))
+        continue;
+      own += weight * mix(sunVolumeRampAt(tau, wFirst, wFar, w0), sunVolumeRampAt(tau, wFirst, wFar, w0 + 1.0), fw);
+    }
+    return max(total - own, 0.0);
+  }
+  return 0.0;
+}
