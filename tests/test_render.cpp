@@ -87,6 +87,14 @@ TEST_CASE("render: the small scene has the particles' silhouette, no NaN, and is
   CHECK(covered > static_cast<std::size_t>(image.width * image.height / 10));
 }
 
+// The scattering table's stored multiple-scattering source at density ρ as the cloud model reads
+// it: below the table's least density it is taken proportional to ρ (particle.frag.glsl).
+float multipleSourceBelowRange(const Table4D& lm, const glm::vec3& S, const glm::vec3& v, const glm::vec3& l,
+                               float rho) {
+  const float rhoMin = std::exp2(static_cast<float>(lm.axes()[3].min));
+  return sampleScattering(lm, S, v, l, std::max(rho, rhoMin)) * std::min(rho / rhoMin, 1.0f);
+}
+
 TEST_CASE("render: one particle's pixels match core/TableLookup within 1%", "[render]") {
   TempDir tmp;
   const Table4D od = smallOpticalDepth(DensityModel::Noise);
@@ -120,8 +128,14 @@ TEST_CASE("render: one particle's pixels match core/TableLookup within 1%", "[re
   ellipsoid.density = 0.6f;
   const Case cases[] = {{"rotated sphere, rho 0.25", sphere}, {"rotated ellipsoid, rho 0.6", ellipsoid}};
 
+  // Seed lighting (§4.4): multiple at ρ, crease ambient. Cloud lighting, for a particle alone:
+  // no shadow from the sun volume (its own chord is taken out exactly), multiple at the ray's
+  // density ρ·T̄ with no cloud around it, ambient sky·(1 − e^{−τ}).
+  for (const LightingModel lighting : {LightingModel::Seed, LightingModel::Cloud})
   for (const Case& c : cases) {
-    INFO(c.name);
+    INFO(c.name << ", lighting " << toString(lighting));
+    settings.lighting = lighting;
+    settings.sunlight = defaultSunlight(lighting);
     const Particle& p = c.particle;
     const Image image = renderer.render({p}, settings);
     REQUIRE(image.nonFiniteCount() == 0);
@@ -148,8 +162,12 @@ TEST_CASE("render: one particle's pixels match core/TableLookup within 1%", "[re
         const float single = firstPhase(l1, glm::dot(dir, sun)) *
                              lookupScattering(l1, h.S, h.v, l, p.density * s.meanDensity);
         // the mean source of the sphere of density ρ over the ray's own opacity (shading.glsl)
-        const float multiple = glsl::multipleScatteringFromTable(sampleScattering(lm, h.S, h.v, l, p.density), s.opticalDepth);
-        const float ambient = glsl::ambientScale(s.transmittance, s.firstMatter);
+        const bool seed = lighting == LightingModel::Seed;
+        const float source = seed ? sampleScattering(lm, h.S, h.v, l, p.density)
+                                  : multipleSourceBelowRange(lm, h.S, h.v, l, p.density * s.meanDensity);
+        const float multiple = glsl::multipleScatteringFromTable(source, s.opticalDepth);
+        const float ambient = seed ? glsl::ambientScale(s.transmittance, s.firstMatter)
+                                   : glsl::uniformSkyAmbient(s.opticalDepth);
         const float distance = h.tEnter + s.firstMatter * (h.tExit - h.tEnter);
         INFO("pixel " << x << "," << y << " tau " << s.opticalDepth);
         maxRadiance = std::max(maxRadiance, relativeDifference(px[0], single + multiple));
@@ -159,9 +177,9 @@ TEST_CASE("render: one particle's pixels match core/TableLookup within 1%", "[re
         CHECK(px[2] == 0.0f);
         ++compared;
       }
-    std::printf("[render] %s: %d pixels compared; max relative difference: radiance %.2e, ambient %.2e, "
+    std::printf("[render] %s, %s lighting: %d pixels compared; max relative difference: radiance %.2e, ambient %.2e, "
                 "transmittance %.2e, distance %.2e\n",
-                c.name, compared, maxRadiance, maxAmbient, maxTransmittance, maxDistance);
+                c.name, toString(lighting), compared, maxRadiance, maxAmbient, maxTransmittance, maxDistance);
     CHECK(compared > 1000);
     CHECK(misses > 1000);
     CHECK(maxRadiance <= 0.01);

@@ -319,7 +319,8 @@ TEST_CASE("render CLI: pixels of one particle reproduce `cloudlut query` for the
     "sun": {"direction": [0.3, 0.8, 0.5], "color": [1, 0, 0]},
     "sky": {"color": [0, 1, 0]},
     "particles": [{"center": [0.3, -0.2, 0.1], "radii": 1.6, "euler_deg": [20, -35, 50], "density": 0.25}]})";
-  const CliResult r = runCli(renderArgs(tmp / "luts", tmp / "one.json", tmp / "one.exr", "--quiet"));
+  // `query` evaluates the seed's shading model (seed §4.4): render with it.
+  const CliResult r = runCli(renderArgs(tmp / "luts", tmp / "one.json", tmp / "one.exr", "--quiet --lighting seed"));
   REQUIRE(r.exitCode == 0);
   int w = 0, h = 0;
   const auto px = readExrChannels(tmp / "one.exr", {"R", "A"}, w, h);

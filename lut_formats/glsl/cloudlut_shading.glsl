@@ -111,8 +111,8 @@ CLOUDLUT_FN vec3 cloudSphereEntry(float tauSun, float tauColumn, vec3 dir, vec3 
 }
 
 // Weight of the cloud-scale sphere against the particle's own (dimensionless, [0, 1]): the
-// share of the column's optical depth that is not the particle's own chord, 0 for a particle
-// alone, → 1 deep in a cloud.
-CLOUDLUT_FN float cloudScaleWeight(float ownColumn, float tauColumn) {
-  return clamp(1.0f - ownColumn / max(tauColumn, 1e-6f), 0.0f, 1.0f);
+// share of the column's optical depth that lies outside the particle (columnOutside of
+// tauColumn), 0 for a particle alone, → 1 deep in a cloud.
+CLOUDLUT_FN float cloudScaleWeight(float columnOutside, float tauColumn) {
+  return tauColumn > 0.0f ? clamp(columnOutside / tauColumn, 0.0f, 1.0f) : 0.0f;
 }

@@ -61,8 +61,8 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   uniforms.set("uNoDistance", kNoDistance);
   uniforms.set("uUseOrder", useOrder ? 1 : 0);
   uniforms.set("uVolume", volume ? 1 : 0);
-  uniforms.set("uLighting", s.lighting == Lighting::Cloud ? 1 : 0);
-  uniforms.set("uSunlightVolume", sunBuilt && s.occlusion && s.sunlight == Sunlight::Volume ? 1 : 0);
+  uniforms.set("uLighting", s.lighting == LightingModel::Cloud ? 1 : 0);
+  uniforms.set("uSunlightVolume", sunBuilt && s.occlusion && s.sunlight == SunlightModel::Volume ? 1 : 0);
   sun.bind(uniforms, kSunVolumeUnit);
   if (!sunBuilt) uniforms.set("uSunCascades", 0);
   buffers_.records.bind(ParticleBuffers::kRecordsBinding);

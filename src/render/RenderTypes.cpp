@@ -24,20 +24,20 @@ BlendMode parseBlendMode(const std::string& text) {
 
 const char* toString(BlendMode mode) { return mode == BlendMode::Volume ? "volume" : "alpha"; }
 
-Lighting parseLighting(const std::string& text, const std::string& option) {
-  if (text == "seed") return Lighting::Seed;
-  if (text == "cloud") return Lighting::Cloud;
+LightingModel parseLighting(const std::string& text, const std::string& option) {
+  if (text == "seed") return LightingModel::Seed;
+  if (text == "cloud") return LightingModel::Cloud;
   throw UsageError(option + ": expected seed or cloud, got '" + text + "'");
 }
 
-Sunlight parseSunlight(const std::string& text, const std::string& option) {
-  if (text == "particle") return Sunlight::Particle;
-  if (text == "volume") return Sunlight::Volume;
+SunlightModel parseSunlight(const std::string& text, const std::string& option) {
+  if (text == "particle") return SunlightModel::Particle;
+  if (text == "volume") return SunlightModel::Volume;
   throw UsageError(option + ": expected particle or volume, got '" + text + "'");
 }
 
-const char* toString(Lighting lighting) { return lighting == Lighting::Seed ? "seed" : "cloud"; }
-const char* toString(Sunlight sunlight) { return sunlight == Sunlight::Volume ? "volume" : "particle"; }
+const char* toString(LightingModel lighting) { return lighting == LightingModel::Seed ? "seed" : "cloud"; }
+const char* toString(SunlightModel sunlight) { return sunlight == SunlightModel::Volume ? "volume" : "particle"; }
 
 std::size_t Image::nonFiniteCount() const {
   return static_cast<std::size_t>(

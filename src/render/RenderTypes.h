@@ -36,15 +36,15 @@ const char* toString(BlendMode mode);
 //          optical-depth volume, multiple scattering blending the particle's own sphere at the
 //          ray's density ρ·T̄ with the sphere of the cloud around the point (its column toward
 //          and away from the sun), ambient sky·(1 − e^{−τ}) (cloudlut_shading.glsl).
-enum class Lighting { Seed, Cloud };
+enum class LightingModel { Seed, Cloud };
 // Where the sunlight reaching a particle is evaluated: once per particle (seed §5.3, the
 // occlusion pass) or per shading point (the sun optical-depth volume).
-enum class Sunlight { Particle, Volume };
+enum class SunlightModel { Particle, Volume };
 // "seed" / "cloud", "particle" / "volume"; UsageError naming `option` otherwise.
-Lighting parseLighting(const std::string& text, const std::string& option = "--lighting");
-Sunlight parseSunlight(const std::string& text, const std::string& option = "--sunlight");
-const char* toString(Lighting lighting);
-const char* toString(Sunlight sunlight);
+LightingModel parseLighting(const std::string& text, const std::string& option = "--lighting");
+SunlightModel parseSunlight(const std::string& text, const std::string& option = "--sunlight");
+const char* toString(LightingModel lighting);
+const char* toString(SunlightModel sunlight);
 
 struct RenderSettings {
   int width = 640;
@@ -56,13 +56,13 @@ struct RenderSettings {
   bool occlusion = true;        // light-space occlusion (sunlight 1 otherwise)
   bool smoothOcclusion = true;  // its density-weighted smoothing pass
   int fragmentsPerPixel = kDefaultFragmentsPerPixel;  // volume: node pool size per low-res pixel
-  Lighting lighting = Lighting::Cloud;
-  Sunlight sunlight = Sunlight::Volume;
+  LightingModel lighting = LightingModel::Cloud;
+  SunlightModel sunlight = SunlightModel::Volume;
 };
 
 // The sunlight each lighting model takes unless told otherwise.
-inline Sunlight defaultSunlight(Lighting lighting) {
-  return lighting == Lighting::Seed ? Sunlight::Particle : Sunlight::Volume;
+inline SunlightModel defaultSunlight(LightingModel lighting) {
+  return lighting == LightingModel::Seed ? SunlightModel::Particle : SunlightModel::Volume;
 }
 
 struct Image {

@@ -98,7 +98,7 @@ struct Renderer::Impl {
   bool illuminate(std::size_t count, const SunVolumeGrid& grid, const RenderSettings& s, RenderStats* stats) {
     const Stopwatch clock;
     std::size_t dropped = 0, skipped = 0;
-    if (s.sunlight == Sunlight::Particle)
+    if (s.sunlight == SunlightModel::Particle)
       dropped = occlusion.run(count, s, particles.tables().unitOpticalRadius(), stats != nullptr);
     const bool sun = needsSunVolume(s) && count > 0;
     if (sun)
@@ -115,7 +115,7 @@ struct Renderer::Impl {
   }
 
   static bool needsSunVolume(const RenderSettings& s) {
-    return s.lighting == Lighting::Cloud || (s.occlusion && s.sunlight == Sunlight::Volume);
+    return s.lighting == LightingModel::Cloud || (s.occlusion && s.sunlight == SunlightModel::Volume);
   }
 
   // Shading and blending at 1/downscale resolution, the volume resolve, the upscale, read-back.

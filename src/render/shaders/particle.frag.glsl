@@ -34,18 +34,6 @@ uniform int uLighting;         // 0 seed (§4.4, §5.3), 1 cloud
 uniform int uSunlightVolume;   // 1: sunlight per shading point from the sun volume, 0: per particle
 uniform float uLaterAsymmetry; // mean cosine of the later phase function (diffuseTransmittance)
 
-// Optical depth (dimensionless) of the particle's whole chord along the sun through the
-// particle-space point px (the optical-depth table at that chord; 0 when px is outside).
-float ownSunColumn(vec3 px, vec3 dl, float rho) {
-  float a = dot(dl, dl), b = dot(px, dl), c = dot(px, px) - 1.0;
-  float disc = b * b - a * c;
-  if (disc <= 0.0) return 0.0;
-  vec3 S = normalize(px + ((-b + sqrt(disc)) / a) * dl);
-  vec3 v = -normalize(dl);
-  vec2 od = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(S, v), uOpticalDepthDims).xy;
-  return particleOpticalDepth(rho, uUnitOpticalRadius, chordLength(S, v), od.x);
-}
-
 // The multiple table's stored mean source at (S, v, l) and density ρ; below the table's least
 // density the source is taken proportional to ρ (it vanishes with the medium).
 float multipleSourceAt(vec3 S, vec3 v, vec3 l, float rho) {
@@ -102,12 +90,10 @@ void main() {
   // Sunlight reaching the particle: per particle from the occlusion pass (seed §5.3), or at the
   // mean scattering point from the sun volume, less the particle's own chord there.
   float sunlight = p.toParticle[2].w;
-  float tauOutside = 0.0;
-  if (uSunlightVolume != 0) {
-    tauOutside = sunOpticalDepthExcluding(xMean, p.centerDensity.xyz, toParticle, rho, uOpticalDepth,
-                                          uOpticalDepthDims, uUnitOpticalRadius);
-    sunlight = exp(-tauOutside);
-  }
+  vec4 sunTau = sunOpticalDepths(xMean, p.centerDensity.xyz, toParticle, rho, uOpticalDepth, uOpticalDepthDims,
+                                 uUnitOpticalRadius);
+  float tauOutside = uSunlightVolume != 0 ? sunTau.x : 0.0;
+  if (uSunlightVolume != 0) sunlight = exp(-tauOutside);
 
   // Single scattering: the mean source of the homogeneous sphere of the ray's mean density,
   // times the phase function of the physical (world-space) scattering angle, times the ray's
@@ -132,12 +118,16 @@ void main() {
     } else {
       float lit = max(sunlight, diffuseTransmittance(tauOutside, uLaterAsymmetry));
       float own = lit * multipleScatteringFromTable(multipleSourceAt(S, v, l, rho * od.x), tau);
-      vec2 column = sunOpticalDepthAndColumn(xMean);
-      vec3 entry = cloudSphereEntry(column.x, column.y, dir, uSunDirection);
-      float rhoCloud = cloudSphereDensity(max(column.y, tau), uUnitOpticalRadius);
-      float cloud = multipleScatteringFromTable(multipleSourceAt(entry, dir, uSunDirection, rhoCloud), tau);
-      float ownColumn = ownSunColumn(toParticle * (xMean - p.centerDensity.xyz), toParticle * uSunDirection, rho);
-      multiple = mix(own, cloud, cloudScaleWeight(ownColumn, column.y));
+      float weight = cloudScaleWeight(sunTau.w, sunTau.z);
+      if (weight > 0.0) {
+        // the cloud sphere: the whole column's optical depth toward and away from the sun
+        vec3 entry = cloudSphereEntry(sunTau.y, sunTau.z, dir, uSunDirection);
+        float rhoCloud = cloudSphereDensity(max(sunTau.z, tau), uUnitOpticalRadius);
+        float cloud = multipleScatteringFromTable(multipleSourceAt(entry, dir, uSunDirection, rhoCloud), tau);
+        multiple = mix(own, cloud, weight);
+      } else {
+        multiple = own;
+      }
     }
   }
   // Ambient: the sky's radiance, scaled by the crease factor of the first matter (seed), or by

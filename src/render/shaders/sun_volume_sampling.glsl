@@ -25,9 +25,17 @@ float sunOpticalDepth(vec3 x) {
   return 0.0;
 }
 
-// (τ toward the sun at x, τ of the whole column through x): the column's value at its far end
-// (slice 0), so that τ_column − τ is the optical depth from x away from the sun.
-vec2 sunOpticalDepthAndColumn(vec3 x) {
+// What the volume says of the sunlight at world point x of one particle (centre, toParticle =
+// M⁻¹, density ρ), from the finest cascade whose columns hold x (all dimensionless):
+//   x  τ toward the sun from x, less the particle's own ramp as the splat laid it into the four
+//      columns and two slices the sample filters (the sunlight reaching x from outside it);
+//   y  τ toward the sun from x, all of it;
+//   z  τ of the whole column through x (its far end, slice 0);
+//   w  the same column less the particle's own chords (the cloud around the particle along the
+//      sun: 0 for a particle alone, up to the fixed-point rounding).
+// (0, 0, 0, 0) outside every cascade.
+vec4 sunOpticalDepths(vec3 x, vec3 centre, mat3 toParticle, float rho, sampler3D opticalDepth, vec4 opticalDepthDims,
+                      float sigma) {
   for (int k = 0; k < uSunCascades; ++k) {
     vec3 g = (uSunToGrid[k] * vec4(x, 1.0)).xyz;
     vec2 inner = vec2(uSunDims.xy) - 1.0;
@@ -35,30 +43,12 @@ vec2 sunOpticalDepthAndColumn(vec3 x) {
     float w = clamp(g.z, 0.0, float(uSunDims.z) - 1.0);
     vec2 xy = (g.xy + 0.5) / vec2(uSunDims.xy);
     float depth = float(uSunDims.z * uSunCascades);
-    float tau = texture(uSunTau, vec3(xy, (float(k * uSunDims.z) + w + 0.5) / depth)).r;
+    float total = texture(uSunTau, vec3(xy, (float(k * uSunDims.z) + w + 0.5) / depth)).r;
     float column = texture(uSunTau, vec3(xy, (float(k * uSunDims.z) + 0.5) / depth)).r;
-    return vec2(tau, max(column, tau));
-  }
-  return vec2(0.0);
-}
-
-// The same optical depth less the contribution of one particle (centre, toParticle = M⁻¹,
-// density ρ) as the splat laid it into the four columns and two slices the sample filters:
-// the sunlight reaching a point of that particle from outside it (dimensionless, ≥ 0).
-float sunOpticalDepthExcluding(vec3 x, vec3 centre, mat3 toParticle, float rho, sampler3D opticalDepth,
-                               vec4 opticalDepthDims, float sigma) {
-  for (int k = 0; k < uSunCascades; ++k) {
-    vec3 g = (uSunToGrid[k] * vec4(x, 1.0)).xyz;
-    vec2 inner = vec2(uSunDims.xy) - 1.0;
-    if (g.x < 0.0 || g.y < 0.0 || g.x > inner.x || g.y > inner.y) continue;
-    float w = clamp(g.z, 0.0, float(uSunDims.z) - 1.0);
-    vec3 tc = vec3((g.xy + 0.5) / vec2(uSunDims.xy),
-                   (float(k * uSunDims.z) + w + 0.5) / float(uSunDims.z * uSunCascades));
-    float total = texture(uSunTau, tc).r;
     float dwds = (uSunToGrid[k] * vec4(uSunColumns, 0.0)).z;
     vec2 base = floor(g.xy), f = g.xy - base;
     float w0 = min(floor(w), float(uSunDims.z) - 2.0), fw = w - w0;
-    float own = 0.0;
+    float own = 0.0, ownColumn = 0.0;
     for (int n = 0; n < 4; ++n) {
       vec2 corner = vec2(float(n & 1), float(n >> 1));
       float weight = mix(1.0 - f.x, f.x, corner.x) * mix(1.0 - f.y, f.y, corner.y);
@@ -67,8 +57,10 @@ float sunOpticalDepthExcluding(vec3 x, vec3 centre, mat3 toParticle, float rho, 
                                            centre, toParticle, rho, uSunColumns, tau, wFirst, wFar))
         continue;
       own += weight * mix(sunVolumeRampAt(tau, wFirst, wFar, w0), sunVolumeRampAt(tau, wFirst, wFar, w0 + 1.0), fw);
+      ownColumn += weight * sunVolumeRampAt(tau, wFirst, wFar, 0.0);
     }
-    return max(total - own, 0.0);
+    column = max(column, total);
+    return vec4(max(total - own, 0.0), total, column, max(column - ownColumn, 0.0));
   }
-  return 0.0;
+  return vec4(0.0);
 }
