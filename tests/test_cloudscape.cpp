@@ -13,14 +13,14 @@
 
 #include <glm/geometric.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "core/Errors.h"
 #include "core/TableLookup.h"
 #include "scene/Cloudscape.h"
 #include "scene/CloudscapeGrid.h"
 #include "render/GlContext.h"
 #include "render/Renderer.h"
-#include "test_render_support.h"
+#include "support/RenderLuts.h"
 
 using namespace cloudlut;
 using namespace cloudlut::render;
