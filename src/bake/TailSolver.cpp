@@ -15,42 +15,11 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-CoarseCorrection::CoarseCorrection(const SphereField& field, std::vector<double> Kc)
-    : field_(&field), n_(field.nodeCount()), lu_(std::move(Kc)), pivots_(static_cast<std::size_t>(n_)) {
-  // LU of I − K_c with partial pivoting (serial: deterministic, NS³/3 flops).
-  const int NS = n_;
-  for (double& v : lu_) v = -v;
-  for (int i = 0; i < NS; ++i) lu_[static_cast<std::size_t>(i) * NS + i] += 1.0;
-  for (int c = 0; c < NS; ++c) {
-    int pr = c;
-    for (int r2 = c + 1; r2 < NS; ++r2)
-      if (std::abs(lu_[static_cast<std::size_t>(r2) * NS + c]) > std::abs(lu_[static_cast<std::size_t>(pr) * NS + c])) pr = r2;
-    pivots_[static_cast<std::size_t>(c)] = pr;
-    if (pr != c)
-      for (int j = 0; j < NS; ++j) std::swap(lu_[static_cast<std::size_t>(c) * NS + j], lu_[static_cast<std::size_t>(pr) * NS + j]);
-    const double d = lu_[static_cast<std::size_t>(c) * NS + c];
-    if (d == 0.0) continue;
-    for (int r2 = c + 1; r2 < NS; ++r2) {
-      double& f = lu_[static_cast<std::size_t>(r2) * NS + c];
-      f /= d;
-      if (f == 0.0) continue;
-      const double* src = &lu_[static_cast<std::size_t>(c) * NS];
-      double* dst = &lu_[static_cast<std::size_t>(r2) * NS];
-      for (int j = c + 1; j < NS; ++j) dst[j] -= f * src[j];
-    }
-  }
-}
-
-void CoarseCorrection::solve(std::vector<double>& x) const {
-  const int NS = n_;
-  for (int c = 0; c < NS; ++c) std::swap(x[static_cast<std::size_t>(c)], x[static_cast<std::size_t>(pivots_[c])]);
-  for (int i = 0; i < NS; ++i)
-    for (int j = 0; j < i; ++j) x[i] -= lu_[static_cast<std::size_t>(i) * NS + j] * x[j];
-  for (int i = NS - 1; i >= 0; --i) {
-    for (int j = i + 1; j < NS; ++j) x[i] -= lu_[static_cast<std::size_t>(i) * NS + j] * x[j];
-    const double d = lu_[static_cast<std::size_t>(i) * NS + i];
-    x[i] = d != 0.0 ? x[i] / d : 0.0;
-  }
+CoarseCorrection::CoarseCorrection(const SphereField& field, const std::vector<double>& Kc)
+    : field_(&field), n_(field.nodeCount()) {
+  // LU of I − K_c with partial pivoting (Eigen, serial: deterministic, NS³/3 flops).
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> K(Kc.data(), n_, n_);
+  lu_.compute(Eigen::MatrixXd::Identity(n_, n_) - K);
 }
 
 void CoarseCorrection::apply(const std::vector<float>& in, std::vector<float>& out) const {
@@ -64,8 +33,7 @@ void CoarseCorrection::apply(const std::vector<float>& in, std::vector<float>& o
     for (int dd = 0; dd < D; ++dd) m += q[dd] * in[static_cast<std::size_t>(sIdx) * D + dd];
     mean[sIdx] = m * inv4pi;
   });
-  std::vector<double> corr = mean;
-  solve(corr);
+  const Eigen::VectorXd corr = lu_.solve(Eigen::Map<const Eigen::VectorXd>(mean.data(), NS));
   tbb::parallel_for(0, NS, [&](int sIdx) {
     const float c = static_cast<float>(corr[sIdx] - mean[sIdx]);
     for (int dd = 0; dd < D; ++dd) {

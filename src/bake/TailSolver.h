@@ -11,6 +11,8 @@
 #include <functional>
 #include <vector>
 
+#include <Eigen/LU>
+
 #include "bake/ScatteringOperator.h"
 
 namespace cloudlut::bake {
@@ -18,17 +20,14 @@ namespace cloudlut::bake {
 // B of the header comment for fields of `field`, from K_c (NS × NS, row-major).
 class CoarseCorrection {
  public:
-  CoarseCorrection(const SphereField& field, std::vector<double> Kc);
+  CoarseCorrection(const SphereField& field, const std::vector<double>& Kc);
   // out = B·in.
   void apply(const std::vector<float>& in, std::vector<float>& out) const;
 
  private:
-  // x ← (I − K_c)^{-1} x by the LU factors.
-  void solve(std::vector<double>& x) const;
   const SphereField* field_;
   int n_;
-  std::vector<double> lu_;  // LU of I − K_c with partial pivoting, row-major
-  std::vector<int> pivots_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  // I − K_c, factored with partial pivoting
 };
 
 struct TailSettings {
