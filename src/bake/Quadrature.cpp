@@ -117,6 +117,21 @@ namespace {
 constexpr double kNearOpticalDepth = 6.0;
 // Optical radius from which the far panel is dropped.
 constexpr double kFarPanelMaxSigma = 20.0;
+
+// Gauss–Legendre panels [edges[p], edges[p+1]] in u = 1 − e^{−σs}, pts[p] points each, appended
+// as s = −ln(1 − u)/σ (at most `length`) with weights du: ∫ σe^{−σs} f ds = ∫ f du.
+void appendAttenuationPanels(const double* edges, const int* pts, int panels, double sigma, double length,
+                             std::vector<double>& s, std::vector<double>& w) {
+  for (int p = 0; p < panels; ++p) {
+    const GaussRule& g = gaussLegendre(pts[p]);
+    const double a = edges[p], h = edges[p + 1] - edges[p];
+    for (int k = 0; k < pts[p]; ++k) {
+      const double u = a + h * g.x[k];
+      s.push_back(std::min(-std::log1p(-u) / sigma, length));
+      w.push_back(h * g.w[k]);
+    }
+  }
+}
 }  // namespace
 
 void attenuatedRayRule(double sigma, double length, int total, std::vector<double>& s, std::vector<double>& w) {
@@ -133,15 +148,7 @@ void attenuatedRayRule(double sigma, double length, int total, std::vector<doubl
     pts[2] = std::max(2, total - pts[0] - pts[1]);
     const double U = -std::expm1(-tau);
     const double edges[4] = {0.0, U / 16.0, U / 4.0, U};
-    for (int p = 0; p < 3; ++p) {
-      const GaussRule& g = gaussLegendre(pts[p]);
-      const double a = edges[p], h = edges[p + 1] - edges[p];
-      for (int k = 0; k < pts[p]; ++k) {
-        const double u = a + h * g.x[k];
-        s.push_back(std::min(-std::log1p(-u) / sigma, length));
-        w.push_back(h * g.w[k]);
-      }
-    }
+    appendAttenuationPanels(edges, pts, 3, sigma, length, s, w);
     return;
   }
   pts[0] = std::max(2, total / 5);
@@ -150,15 +157,7 @@ void attenuatedRayRule(double sigma, double length, int total, std::vector<doubl
   const double tauNear = std::min(tau, kNearOpticalDepth);
   const double U1 = -std::expm1(-tauNear);
   const double edges[3] = {0.0, U1 / 8.0, U1};
-  for (int p = 0; p < 2; ++p) {
-    const GaussRule& g = gaussLegendre(pts[p]);
-    const double a = edges[p], h = edges[p + 1] - edges[p];
-    for (int k = 0; k < pts[p]; ++k) {
-      const double u = a + h * g.x[k];
-      s.push_back(std::min(-std::log1p(-u) / sigma, length));
-      w.push_back(h * g.w[k]);
-    }
-  }
+  appendAttenuationPanels(edges, pts, 2, sigma, length, s, w);
   const GaussRule& g = gaussLegendre(pts[2]);
   const double s0 = tauNear / sigma, h = length - s0;
   const std::size_t first = w.size();
