@@ -7,6 +7,7 @@
 
 #include "bake/EnergyBalance.h"
 #include "bake/ScatteringBaker.h"
+#include "support/BakedFixtures.h"
 
 using namespace cloudlut;
 
@@ -46,9 +47,7 @@ TEST_CASE("18-order shares match DESIGN.md's photon tracing (HG 0.9 then 0.7)", 
 }
 
 TEST_CASE("Converged multiple scattering closes the energy balance", "[energy]") {
-  bake::ScatteringSettings s;
-  s.orders = 0;
-  const auto r = bake::bakeScattering(s);
+  const auto& r = test::defaultScattering(0);  // the default settings, converged
   REQUIRE(r.multiple);
   CHECK(r.multiple->parameters()["orders"] == "converged");
   const auto e = bake::computeEnergyBalance(&*r.single, &*r.multiple);

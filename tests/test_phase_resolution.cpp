@@ -13,7 +13,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "bake/DirectionGrid.h"
 #include "bake/PhaseResolution.h"
 #include "core/Glsl.h"

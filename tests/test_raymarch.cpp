@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "reference/ScenePathTracer.h"
 #include "render/GlContext.h"
 #include "render/RayMarchRenderer.h"

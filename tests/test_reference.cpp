@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "core/Glsl.h"
 #include "reference/SphereMonteCarlo.h"
 

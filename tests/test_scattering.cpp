@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <random>
 
 #include "bake/ScatteringBaker.h"
@@ -16,6 +15,7 @@
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
 #include "reference/SphereMonteCarlo.h"
+#include "support/BakedFixtures.h"
 
 using namespace cloudlut;
 
@@ -41,17 +41,8 @@ double bruteForceL1(const glm::dvec3& S, const glm::dvec3& v, const glm::dvec3& 
   return sum;
 }
 
-// Baked tables shared by several test cases (baking is the expensive part).
-const bake::ScatteringResult& bakedDefault(int orders) {
-  static std::map<int, bake::ScatteringResult> cache;
-  auto it = cache.find(orders);
-  if (it == cache.end()) {
-    bake::ScatteringSettings s;
-    s.orders = orders;
-    it = cache.emplace(orders, bake::bakeScattering(s)).first;
-  }
-  return it->second;
-}
+// Baked tables shared by several test cases (baking is the expensive part): once per test run.
+const bake::ScatteringResult& bakedDefault(int orders) { return test::defaultScattering(orders); }
 
 glm::dvec3 randomUnit(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);

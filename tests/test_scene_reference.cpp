@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 #include <tbb/global_control.h>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "core/Glsl.h"
 #include "io/ExrImage.h"
 #include "reference/ScenePathTracer.h"

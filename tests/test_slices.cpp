@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "cli/ContactSheet.h"
 #include "io/LutIo.h"
 

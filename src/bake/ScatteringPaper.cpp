@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -11,6 +12,7 @@
 #include "bake/Quadrature.h"
 #include "bake/SingleScattering.h"
 #include "core/Glsl.h"
+#include "cloudlut_quadrilinear.h"
 
 namespace cloudlut::bake {
 
@@ -46,25 +48,17 @@ float sampleVolume(const Volume& vol, const std::vector<float>& f, const glm::dv
   const glm::vec3 a = glsl::scatteringAngles(n, glm::vec3(v), glm::vec3(0.0f, 0.0f, 1.0f));
   const double c[4] = {a.x / kPi * (vol.nS - 1), a.y / (2.0 * kPi) * (vol.nP - 1), a.z / kPi * (vol.nV - 1),
                        r * (vol.nR - 1)};
-  const int n4[4] = {vol.nS, vol.nP, vol.nV, vol.nR};
-  int i[4];
+  const std::uint32_t n4[4] = {static_cast<std::uint32_t>(vol.nS), static_cast<std::uint32_t>(vol.nP),
+                               static_cast<std::uint32_t>(vol.nV), static_cast<std::uint32_t>(vol.nR)};
+  std::uint32_t i[4];
   float fr[4];
   for (int k = 0; k < 4; ++k) {
     const double cc = std::clamp(c[k], 0.0, static_cast<double>(n4[k] - 1));
-    i[k] = std::min(static_cast<int>(cc), n4[k] - 2);
+    i[k] = std::min(static_cast<std::uint32_t>(cc), n4[k] - 2);
     fr[k] = static_cast<float>(cc - i[k]);
   }
   float out = 0.0f;
-  for (int corner = 0; corner < 16; ++corner) {
-    float w = 1.0f;
-    int j[4];
-    for (int k = 0; k < 4; ++k) {
-      const bool hi = (corner >> k) & 1;
-      j[k] = i[k] + (hi ? 1 : 0);
-      w *= hi ? fr[k] : 1.0f - fr[k];
-    }
-    out += w * f[vol.index(j[0], j[1], j[2], j[3])];
-  }
+  cloudlut_reader::interpolateCell(f.data(), n4, 1, i, fr, &out);
   return out;
 }
 
