@@ -39,10 +39,7 @@ EnergyInputs energyInputsFromParameters(const Table4D* single, const Table4D* mu
   const auto& p = t->parameters();
   in.unitOpticalRadius = p.value("extinction_per_m", defaults::kExtinctionPerMetre) *
                          p.value("radius_m", defaults::kParticleRadiusMetres);
-  const auto phase = (single ? single->parameters() : p).value("first_phase", nlohmann::json::object());
-  // a kind no phase has is isotropic, as phaseFunction() of cloudlut_phase.glsl treats it
-  const int kind = phase.value("kind", glslKind(defaults::kFirstPhase.kind));
-  in.firstPhase = {phaseKindFromInt(kind).value_or(PhaseKind::Isotropic), phase.value("param", defaults::kFirstPhase.param)};
+  in.firstPhase = recordedPhase(single ? single->parameters() : p, "first_phase", defaults::kFirstPhase);
   return in;
 }
 

@@ -12,6 +12,7 @@
 
 #include "bake/OpticalDepthBaker.h"
 #include "bake/SingleScattering.h"
+#include "core/Defaults.h"
 #include "core/Errors.h"
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
@@ -75,11 +76,8 @@ OpticalDepthChoice chooseOpticalDepthResolution(const ReferenceParticle& particl
   }
   // Up to the default 64×32×64×32: its folded depth, 64·32 = 2048, is the largest 3D texture
   // side OpenGL implementations must support.
-  const std::array<std::array<int, 4>, 5> ladder{{{16, 8, 16, 8},
-                                                  {24, 12, 24, 12},
-                                                  {32, 16, 32, 16},
-                                                  {48, 24, 48, 24},
-                                                  {64, 32, 64, 32}}};
+  const std::array<std::array<int, 4>, 5> ladder{
+      {{16, 8, 16, 8}, {24, 12, 24, 12}, {32, 16, 32, 16}, {48, 24, 48, 24}, defaults::kOpticalDepthDims}};
   OpticalDepthChoice choice{ladder.back(), 0.0};
   for (const auto& dims : ladder) {
     OpticalDepthSettings s;

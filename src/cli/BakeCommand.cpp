@@ -67,7 +67,7 @@ void configureScattering(bake::ScatteringSettings& sc, const cxxopts::ParseResul
   sc.sMin = s.front();
   sc.sMax = s.back();
   sc.dims[3] = static_cast<int>(s.size());
-  const PhasePair phases = *parsePhaseOptions(args);  // --phase has a default
+  const PhasePair phases = parsePhaseOptions(args).value();  // --phase has a default
   sc.firstPhase = phases.first;
   sc.laterPhase = phases.later;
 

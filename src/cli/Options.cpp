@@ -132,7 +132,7 @@ void addPhaseOptions(cxxopts::Options& options, bool defaultFromLuts) {
 }
 
 std::optional<PhasePair> parsePhaseOptions(const cxxopts::ParseResult& args) {
-  if (!args.count("phase")) return std::nullopt;
+  if (!args.count("phase") && !args["phase"].has_default()) return std::nullopt;  // count() omits defaults
   const std::string phase = args["phase"].as<std::string>();
   if (phase == "cs" || phase == "hg") {
     const double g1 = args["g1"].as<double>(), gm = args["gm"].as<double>();

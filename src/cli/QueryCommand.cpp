@@ -11,8 +11,9 @@
 #include "cli/Command.h"
 #include "cli/Options.h"
 #include "io/QueryCsv.h"
+#include "core/Defaults.h"
 #include "core/Errors.h"
-#include "core/Glsl.h"
+#include "core/Phase.h"
 #include "core/TableLookup.h"
 #include "io/LutIo.h"
 
@@ -22,9 +23,7 @@ namespace {
 // The phase function a scattering table was baked with for sunlight's first scattering,
 // as recorded in its parameters: {"first_phase": {"kind": K, "param": P}}.
 float firstScatteringPhase(const Table4D& single, float mu) {
-  const auto& p = single.parameters();
-  const auto phase = p.value("first_phase", nlohmann::json::object());
-  return glsl::phaseFunction(phase.value("kind", 2), mu, phase.value("param", 0.9f));
+  return phaseValue(recordedPhase(single.parameters(), "first_phase", defaults::kFirstPhase), mu);
 }
 
 std::string formatValue(float v) {

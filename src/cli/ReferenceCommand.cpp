@@ -64,7 +64,7 @@ int runReference(int argc, char** argv) {
   reference::SphereMcSettings st;
   st.paths = paths;
   st.seed = args["seed"].as<unsigned long long>();
-  const PhasePair phases = *parsePhaseOptions(args);  // --phase has a default
+  const PhasePair phases = parsePhaseOptions(args).value();  // --phase has a default
   st.first = phases.first;
   st.later = phases.later;
   const auto threads = limitThreads(args["threads"].as<int>());

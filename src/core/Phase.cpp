@@ -57,4 +57,10 @@ Phase phaseFromJson(const nlohmann::json& j, const std::string& file, const std:
   return {*kind, j["param"].get<float>()};
 }
 
+Phase recordedPhase(const nlohmann::json& parameters, const char* key, const Phase& fallback) {
+  const nlohmann::json phase = parameters.value(key, nlohmann::json::object());
+  const int kind = phase.value("kind", glslKind(fallback.kind));
+  return {phaseKindFromInt(kind).value_or(PhaseKind::Isotropic), phase.value("param", fallback.param)};
+}
+
 }  // namespace cloudlut

@@ -41,5 +41,9 @@ nlohmann::json phaseToJson(const Phase& phase);
 // The way back; FileError(file, "<field>: ...") when `j` is not {"kind": integer, "param":
 // number} of a known kind.
 Phase phaseFromJson(const nlohmann::json& j, const std::string& file, const std::string& field);
+// The phase a table's parameters record under `key` ("first_phase"), read leniently as the
+// shaders' phaseFunction() would take it: a missing object, kind or param takes `fallback`'s; a
+// kind no phase has is isotropic. nlohmann::json::type_error when kind or param is not a number.
+Phase recordedPhase(const nlohmann::json& parameters, const char* key, const Phase& fallback);
 
 }  // namespace cloudlut
