@@ -32,10 +32,8 @@ double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::function<double(double)> phaseOf(const PhaseSpec& p) {
-  return [p](double mu) {
-    return static_cast<double>(glsl::phaseFunction(p.kind, static_cast<float>(mu), p.param));
-  };
+std::function<double(double)> phaseOf(const Phase& p) {
+  return [p](double mu) { return static_cast<double>(phaseValue(p, static_cast<float>(mu))); };
 }
 
 // The row-major rows × cols matrix A as float, transposed: At[j·rows + i] = A[i·cols + j].

@@ -73,7 +73,7 @@ void bakePaperMultipleScattering(const ScatteringSettings& settings, Table4D& ta
   const glm::dvec3 l(0, 0, 1);
   const std::size_t N = vol.size();
   const int nRho = d[3];
-  const PhaseSpec p1 = settings.firstPhase, pm = settings.laterPhase;
+  const Phase p1 = settings.firstPhase, pm = settings.laterPhase;
 
   // Gather directions: the table's own (φv, θv) nodes (periodic φ node counted once), with
   // weights ∫ hat(θ) sinθ dθ · Δφ.
@@ -134,9 +134,9 @@ void bakePaperMultipleScattering(const ScatteringSettings& settings, Table4D& ta
             glm::dvec3 Pw, w;
             cellGeometry(vol, iS, jP, jV, iR, Pw, w);
             double value = L[vol.index(iS, jP, jV, iR)];
-            if (n == 2) value *= glsl::phaseFunction(p1.kind, static_cast<float>(glm::dot(w, l)), p1.param);
+            if (n == 2) value *= phaseValue(p1, static_cast<float>(glm::dot(w, l)));
             acc += wTheta[jV] * dPhi * value *
-                   glsl::phaseFunction(pm.kind, static_cast<float>(glm::dot(w, v)), pm.param);
+                   phaseValue(pm, static_cast<float>(glm::dot(w, v)));
           }
         J[c] = static_cast<float>(acc);
       });
