@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages cloudlut builds and runs with, when any is missing.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libopenexr-dev libglm-dev libtbb-dev catch2
-          libcxxopts-dev nlohmann-json3-dev libosmesa6-dev libgl-dev libstb-dev
+          libcxxopts-dev nlohmann-json3-dev libeigen3-dev libosmesa6-dev libgl-dev libstb-dev
           python3-matplotlib clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do

@@ -9,7 +9,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
 test -x "$work/prefix/bin/cloudlut"
-test -f "$work/prefix/include/cloudlut/cloudlut_reader.h"
+for h in cloudlut_lut.h cloudlut_quadrilinear.h cloudlut_manifest.h cloudlut_reader.h cloudlut_glsl.hpp; do
+  test -f "$work/prefix/include/cloudlut/$h"
+done
 test -f "$work/prefix/include/cloudlut/glsl/cloudlut_geometry.glsl"
 cmake -S "$src/examples/sample_lut" -B "$work/example" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/example" >/dev/null

@@ -7,7 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
+#include "core/Defaults.h"
 #include "io/LutIo.h"
 
 using namespace cloudlut;
@@ -143,7 +144,7 @@ TEST_CASE("query evaluates the optical depth of the homogeneous sphere exactly",
     for (int i = 0; i <= k; ++i) std::getline(ss, f, ',');
     return std::stod(f);
   };
-  const double sigma = 0.07 * 183.8;
+  const double sigma = defaults::kUnitOpticalRadius;  // the bake's default β·R
   CHECK(column(row1, 10) == Approx(sigma * 0.5 * 2.0).epsilon(1e-5));
   CHECK(column(row2, 10) == Approx(sigma * 2.0 * 1.2).epsilon(1e-5));
   CHECK(column(row1, 11) == Approx(std::exp(-sigma)).epsilon(1e-4));

@@ -13,7 +13,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "core/Errors.h"
 #include "core/TableLookup.h"
 #include "scene/Cloudscape.h"
@@ -21,7 +21,7 @@
 #include "render/GlContext.h"
 #include "render/GpuParticleRecord.h"
 #include "render/Renderer.h"
-#include "test_render_support.h"
+#include "support/RenderLuts.h"
 
 using namespace cloudlut;
 using namespace cloudlut::render;

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "io/ExrImage.h"
 #include "reference/SceneCompare.h"
 

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "bake/OpticalDepthBaker.h"
 #include "bake/SingleScattering.h"
 #include "core/Glsl.h"

@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "io/LutIo.h"
 
 using namespace cloudlut;

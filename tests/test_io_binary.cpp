@@ -10,13 +10,15 @@
 #include "io/LittleEndian.h"
 #include "io/LutIo.h"
 #include "io/SampleCodec.h"
-#include "test_io_support.h"
+#include "support/Checks.h"
+#include "support/Files.h"
+#include "support/SmallTables.h"
+#include "support/TempDir.h"
 
 using cloudlut::io::SampleType;
+using namespace cloudlut::test;
 
 namespace {
-
-bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 void requireSameDescription(const cloudlut::Table4D& a, const cloudlut::Table4D& b) {
   REQUIRE(a.name() == b.name());
@@ -40,8 +42,8 @@ void requireSameDescription(const cloudlut::Table4D& a, const cloudlut::Table4D&
 }  // namespace
 
 TEST_CASE("io: binary float round trip is bit for bit", "[io]") {
-  iotest::TempDir dir;
-  cloudlut::Table4D table = iotest::makeTable({5, 4, 3, 2}, 2, -1e3f, 1e3f);
+  TempDir dir;
+  cloudlut::Table4D table = makeTable({5, 4, 3, 2}, 2, -1e3f, 1e3f);
   {
     auto axes = table.axes();  // a concentrated axis survives the round trip (format version 2)
     axes[1].warp = 6.5;
@@ -62,12 +64,12 @@ TEST_CASE("io: binary float round trip is bit for bit", "[io]") {
   REQUIRE(loaded.table.data().size() == table.data().size());
   for (std::size_t k = 0; k < table.data().size(); ++k)
     REQUIRE(sameBits(loaded.table.data()[k], table.data()[k]));
-  REQUIRE(iotest::listDir(dir.path()) == std::vector<std::string>{"t.bin"});
+  REQUIRE(listDir(dir.path()) == std::vector<std::string>{"t.bin"});
 }
 
 TEST_CASE("io: binary half stores exactly the half values", "[io]") {
-  iotest::TempDir dir;
-  cloudlut::Table4D table = iotest::makeTable({3, 5, 2, 4}, 1, -70000.0f, 70000.0f);
+  TempDir dir;
+  cloudlut::Table4D table = makeTable({3, 5, 2, 4}, 1, -70000.0f, 70000.0f);
   table.data()[0] = 1e-7f;  // a half subnormal
   table.data()[1] = 0.1f;
   cloudlut::io::writeBinaryLut(table, SampleType::Half, dir / "t.bin");
@@ -85,12 +87,12 @@ TEST_CASE("io: binary u8 stores clamped codes rounded to nearest", "[io]") {
   REQUIRE(cloudlut::io::encodeU8(0.2f) == 51);
   REQUIRE(cloudlut::io::encodeU8(1.0f / 255.0f) == 1);
 
-  iotest::TempDir dir;
-  const cloudlut::Table4D table = iotest::makeTable({4, 4, 3, 3}, 2);
+  TempDir dir;
+  const cloudlut::Table4D table = makeTable({4, 4, 3, 3}, 2);
   cloudlut::io::writeBinaryLut(table, SampleType::U8, dir / "t.bin");
   const auto loaded = cloudlut::io::readLut(dir / "t.bin");
   REQUIRE(loaded.sampleType == SampleType::U8);
-  const std::string bytes = iotest::readBytes(dir / "t.bin");
+  const std::string bytes = readFile(dir / "t.bin");
   const std::size_t payload = bytes.size() - table.data().size();
   for (std::size_t k = 0; k < table.data().size(); ++k) {
     const std::uint8_t code = cloudlut::io::encodeU8(table.data()[k]);
@@ -101,15 +103,15 @@ TEST_CASE("io: binary u8 stores clamped codes rounded to nearest", "[io]") {
 
 TEST_CASE("io: binary header follows the documented layout", "[io]") {
   using namespace cloudlut::io;
-  iotest::TempDir dir;
-  const cloudlut::Table4D plain = iotest::makeTable({6, 5, 4, 3}, 2);
+  TempDir dir;
+  const cloudlut::Table4D plain = makeTable({6, 5, 4, 3}, 2);
   auto axes = plain.axes();
   axes[1].warp = 7.0;
   cloudlut::Table4D table(plain.name(), axes, plain.channels());
   table.data() = plain.data();
   table.parameters() = plain.parameters();
   writeBinaryLut(table, SampleType::Half, dir / "t.bin");
-  const std::string b = iotest::readBytes(dir / "t.bin");
+  const std::string b = readFile(dir / "t.bin");
   const char* p = b.data();
   REQUIRE(b.compare(0, 8, "CLOUDLUT") == 0);
   REQUIRE(getU32(p + 8) == 2);
@@ -159,7 +161,7 @@ TEST_CASE("io: sample type names and table description", "[io]") {
   REQUIRE_FALSE(parseSampleType("double"));
   for (SampleType t : {SampleType::U8, SampleType::Half, SampleType::Float})
     REQUIRE(parseSampleType(toString(t)) == t);
-  const cloudlut::Table4D table = iotest::makeTable({4, 3, 2, 2}, 2);
+  const cloudlut::Table4D table = makeTable({4, 3, 2, 2}, 2);
   const auto d = describeTable(table, SampleType::Float);
   REQUIRE(d["name"] == "optical_depth");
   REQUIRE(d["dims"] == nlohmann::json({4, 3, 2, 2}));
@@ -173,10 +175,10 @@ TEST_CASE("io: sample type names and table description", "[io]") {
 }
 
 TEST_CASE("io: binary writer rejects names that do not fit their fields", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   const cloudlut::Table4D table =
-      iotest::makeTable({2, 2, 2, 2}, 1, 0.0f, 1.0f, 1, std::string(40, 'x'));
+      makeTable({2, 2, 2, 2}, 1, 0.0f, 1.0f, 1, std::string(40, 'x'));
   REQUIRE_THROWS_AS(cloudlut::io::writeBinaryLut(table, SampleType::Float, dir / "t.bin"),
                     cloudlut::UsageError);
-  REQUIRE(iotest::listDir(dir.path()).empty());
+  REQUIRE(listDir(dir.path()).empty());
 }

@@ -5,34 +5,27 @@
 #include "io/Fnv1a.h"
 #include "io/LittleEndian.h"
 #include "io/LutIo.h"
-#include "test_io_support.h"
+#include "support/Checks.h"
+#include "support/Files.h"
+#include "support/SmallTables.h"
+#include "support/TempDir.h"
 
 using cloudlut::io::SampleType;
+using namespace cloudlut::test;
 
 namespace {
 
-template <typename F>
-std::string fileErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const cloudlut::FileError& e) {
-    return e.what();
-  }
-  FAIL("expected a FileError");
-  return {};
-}
-
 // readLut's error message for a file holding `bytes`.
-std::string errorFor(const iotest::TempDir& dir, const std::string& bytes) {
+std::string errorFor(const TempDir& dir, const std::string& bytes) {
   const auto path = dir / "bad.bin";
-  iotest::writeBytes(path, bytes);
+  writeFile(path, bytes);
   return fileErrorOf([&] { cloudlut::io::readLut(path); });
 }
 
 // A valid file's bytes.
-std::string goodFile(const iotest::TempDir& dir, SampleType type = SampleType::Half) {
-  cloudlut::io::writeBinaryLut(iotest::makeTable({4, 3, 3, 2}, 2), type, dir / "good.bin");
-  return iotest::readBytes(dir / "good.bin");
+std::string goodFile(const TempDir& dir, SampleType type = SampleType::Half) {
+  cloudlut::io::writeBinaryLut(makeTable({4, 3, 3, 2}, 2), type, dir / "good.bin");
+  return readFile(dir / "good.bin");
 }
 
 // Overwrites a little-endian integer field and recomputes the header checksum, so that only
@@ -50,7 +43,7 @@ void patchField(std::string& bytes, std::size_t offset, std::uint64_t value, int
 }  // namespace
 
 TEST_CASE("io: truncated binary payload is reported with sizes", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   const std::string good = goodFile(dir);
   const std::uint32_t headerBytes = cloudlut::io::getU32(good.data() + 12);
   const std::size_t payload = good.size() - headerBytes;
@@ -64,7 +57,7 @@ TEST_CASE("io: truncated binary payload is reported with sizes", "[io]") {
 }
 
 TEST_CASE("io: every truncation and every header byte flip gives FileError", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   const std::string good = goodFile(dir, SampleType::U8);
   for (std::size_t n = 1; n < good.size(); ++n) errorFor(dir, good.substr(0, n));
   const std::uint32_t headerBytes = cloudlut::io::getU32(good.data() + 12);
@@ -77,7 +70,7 @@ TEST_CASE("io: every truncation and every header byte flip gives FileError", "[i
 }
 
 TEST_CASE("io: a flipped payload byte is a checksum mismatch", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   std::string bad = goodFile(dir);
   bad[bad.size() - 3] = static_cast<char>(bad[bad.size() - 3] ^ 0x10);
   REQUIRE_THAT(errorFor(dir, bad), Catch::EndsWith(": checksum mismatch"));
@@ -87,7 +80,7 @@ TEST_CASE("io: a flipped payload byte is a checksum mismatch", "[io]") {
 }
 
 TEST_CASE("io: an unsupported format version is named", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   std::string bad = goodFile(dir);
   bad[8] = 7;
   REQUIRE_THAT(errorFor(dir, bad),
@@ -95,7 +88,7 @@ TEST_CASE("io: an unsupported format version is named", "[io]") {
 }
 
 TEST_CASE("io: empty, missing and foreign files are not LUTs", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   REQUIRE_THAT(errorFor(dir, ""), Catch::Contains("not a cloudlut LUT"));
   REQUIRE_THAT(errorFor(dir, "P6\n2 2\n255\n0123456789ab"),
                Catch::EndsWith("not a cloudlut LUT (bad magic)"));
@@ -119,7 +112,7 @@ TEST_CASE("io: empty, missing and foreign files are not LUTs", "[io]") {
 }
 
 TEST_CASE("io: a header claiming a huge payload is checked against the file size", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   std::string bad = goodFile(dir, SampleType::U8);
   // 10000 × 10000 × 100 × 100 one-byte samples of one channel: 10^12 bytes, consistently.
   patchField(bad, 16, 10000, 4);

@@ -13,32 +13,18 @@
 
 #include "core/Errors.h"
 #include "io/LutIo.h"
-#include "test_io_support.h"
+#include "support/Checks.h"
+#include "support/Files.h"
+#include "support/SmallTables.h"
+#include "support/TempDir.h"
 
 using cloudlut::io::SampleType;
-
-namespace {
-
-bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-
-// The message of the FileError `f` throws; fails the test if it throws anything else or nothing.
-template <typename F>
-std::string fileErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const cloudlut::FileError& e) {
-    return e.what();
-  }
-  FAIL("expected a FileError");
-  return {};
-}
-
-}  // namespace
+using namespace cloudlut::test;
 
 TEST_CASE("io: EXR float round trip is bit for bit", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   for (int channels = 1; channels <= 4; ++channels) {
-    const cloudlut::Table4D table = iotest::makeTable({5, 4, 3, 2}, channels, -1e5f, 1e5f);
+    const cloudlut::Table4D table = makeTable({5, 4, 3, 2}, channels, -1e5f, 1e5f);
     cloudlut::io::writeExrLut(table, SampleType::Float, dir / "t.exr");
     const auto loaded = cloudlut::io::readLut(dir / "t.exr");
     REQUIRE(loaded.sampleType == SampleType::Float);
@@ -52,12 +38,12 @@ TEST_CASE("io: EXR float round trip is bit for bit", "[io]") {
     for (std::size_t k = 0; k < table.data().size(); ++k)
       REQUIRE(sameBits(loaded.table.data()[k], table.data()[k]));
   }
-  REQUIRE(iotest::listDir(dir.path()) == std::vector<std::string>{"t.exr"});
+  REQUIRE(listDir(dir.path()) == std::vector<std::string>{"t.exr"});
 }
 
 TEST_CASE("io: EXR half stores exactly the half values", "[io]") {
-  iotest::TempDir dir;
-  const cloudlut::Table4D table = iotest::makeTable({4, 3, 5, 2}, 2, -2.0f, 3.0f);
+  TempDir dir;
+  const cloudlut::Table4D table = makeTable({4, 3, 5, 2}, 2, -2.0f, 3.0f);
   cloudlut::io::writeExrLut(table, SampleType::Half, dir / "t.exr");
   const auto loaded = cloudlut::io::readLut(dir / "t.exr");
   REQUIRE(loaded.sampleType == SampleType::Half);
@@ -66,9 +52,9 @@ TEST_CASE("io: EXR half stores exactly the half values", "[io]") {
 }
 
 TEST_CASE("io: EXR atlas layout and attributes", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   const std::array<int, 4> d = {5, 4, 3, 2};
-  const cloudlut::Table4D table = iotest::makeTable(d, 2);
+  const cloudlut::Table4D table = makeTable(d, 2);
   cloudlut::io::writeExrLut(table, SampleType::Float, dir / "t.exr");
 
   Imf::InputFile file((dir / "t.exr").c_str());
@@ -111,8 +97,8 @@ TEST_CASE("io: EXR atlas layout and attributes", "[io]") {
 }
 
 TEST_CASE("io: EXR rejects 8-bit samples and leaves nothing", "[io]") {
-  iotest::TempDir dir;
-  const cloudlut::Table4D table = iotest::makeTable({2, 2, 2, 2}, 1);
+  TempDir dir;
+  const cloudlut::Table4D table = makeTable({2, 2, 2, 2}, 1);
   try {
     cloudlut::io::writeExrLut(table, SampleType::U8, dir / "t.exr");
     FAIL("expected a UsageError");
@@ -120,11 +106,11 @@ TEST_CASE("io: EXR rejects 8-bit samples and leaves nothing", "[io]") {
     REQUIRE(std::string(e.what()) ==
             "EXR cannot store 8-bit samples; use --format bin or --precision half|float");
   }
-  REQUIRE(iotest::listDir(dir.path()).empty());
+  REQUIRE(listDir(dir.path()).empty());
 }
 
 TEST_CASE("io: an EXR without the cloudlut attribute is not a LUT", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   const auto path = dir / "plain.exr";
   {
     Imf::Header header(4, 3);
@@ -143,14 +129,14 @@ TEST_CASE("io: an EXR without the cloudlut attribute is not a LUT", "[io]") {
 }
 
 TEST_CASE("io: damaged EXR files give FileError", "[io]") {
-  iotest::TempDir dir;
-  const cloudlut::Table4D table = iotest::makeTable({6, 5, 4, 3}, 2);
+  TempDir dir;
+  const cloudlut::Table4D table = makeTable({6, 5, 4, 3}, 2);
   cloudlut::io::writeExrLut(table, SampleType::Half, dir / "t.exr");
-  const std::string good = iotest::readBytes(dir / "t.exr");
+  const std::string good = readFile(dir / "t.exr");
 
   SECTION("every truncation") {
     for (std::size_t n = 1; n < good.size(); n += 7) {
-      iotest::writeBytes(dir / "cut.exr", good.substr(0, n));
+      writeFile(dir / "cut.exr", good.substr(0, n));
       fileErrorOf([&] { cloudlut::io::readLut(dir / "cut.exr"); });
     }
   }
@@ -158,7 +144,7 @@ TEST_CASE("io: damaged EXR files give FileError", "[io]") {
     for (std::size_t k = 4; k < good.size(); k += 13) {
       std::string bad = good;
       bad[k] = static_cast<char>(bad[k] ^ 0x5a);
-      iotest::writeBytes(dir / "bad.exr", bad);
+      writeFile(dir / "bad.exr", bad);
       try {
         cloudlut::io::readLut(dir / "bad.exr");  // a flip in padding may go unnoticed
       } catch (const cloudlut::FileError&) {

@@ -20,22 +20,19 @@
 #include "core/Errors.h"
 #include "io/LittleEndian.h"
 #include "io/LutIo.h"
-#include "test_io_support.h"
+#include "support/Checks.h"
+#include "support/Files.h"
+#include "support/SmallTables.h"
+#include "support/TempDir.h"
 
 using cloudlut::io::SampleType;
+using namespace cloudlut::test;
 
 namespace {
 
-// The message of the FileError reading `path` throws; fails the test if it throws anything else
-// or nothing.
+// The message of the FileError reading `path` throws.
 std::string readError(const std::filesystem::path& path) {
-  try {
-    cloudlut::io::readLut(path);
-  } catch (const cloudlut::FileError& e) {
-    return e.what();
-  }
-  FAIL("expected a FileError");
-  return {};
+  return fileErrorOf([&] { cloudlut::io::readLut(path); });
 }
 
 std::string int32Bytes(std::int32_t v) {
@@ -101,9 +98,9 @@ void rewrite(const std::filesystem::path& from, const std::filesystem::path& to,
 }  // namespace
 
 TEST_CASE("io: EXR channel lists are checked by content, within their declared size", "[io][fuzz]") {
-  iotest::TempDir dir;
-  cloudlut::io::writeExrLut(iotest::makeTable({4, 3, 2, 2}, 2), SampleType::Half, dir / "t.exr");
-  const std::string good = iotest::readBytes(dir / "t.exr");
+  TempDir dir;
+  cloudlut::io::writeExrLut(makeTable({4, 3, 2, 2}, 2), SampleType::Half, dir / "t.exr");
+  const std::string good = readFile(dir / "t.exr");
   const std::string list = valueOf(good, "channels", "chlist");
   REQUIRE(list == channelEntry("G", 1) + channelEntry("R", 1) + '\0');  // the writer's list
   const auto bad = dir / "bad.exr";
@@ -113,7 +110,7 @@ TEST_CASE("io: EXR channel lists are checked by content, within their declared s
     // its terminating NUL, a string attribute claiming 2 GiB. OpenEXR parses the list by
     // content, stops at the NUL and reads the hidden attribute next; the declared sizes alone
     // all fit the file.
-    iotest::writeBytes(bad, withValue(good, "channels", "chlist",
+    writeFile(bad, withValue(good, "channels", "chlist",
                                       list + "x" + '\0' + "string" + '\0' + int32Bytes(0x7ffffff0)));
     const std::string message = readError(bad);
     REQUIRE_THAT(message, Catch::Contains("channel list \"channels\" ends 13 bytes before its declared size"));
@@ -121,44 +118,44 @@ TEST_CASE("io: EXR channel lists are checked by content, within their declared s
   }
   SECTION("a list running past its declared size") {
     // Without its terminating NUL, OpenEXR would read the next attribute as channel entries.
-    iotest::writeBytes(bad, withValue(good, "channels", "chlist", list.substr(0, list.size() - 1)));
+    writeFile(bad, withValue(good, "channels", "chlist", list.substr(0, list.size() - 1)));
     REQUIRE_THAT(readError(bad), Catch::Contains("channel list \"channels\" is not terminated"));
-    iotest::writeBytes(bad, withValue(good, "channels", "chlist", list.substr(0, list.size() - 6) + '\0'));
+    writeFile(bad, withValue(good, "channels", "chlist", list.substr(0, list.size() - 6) + '\0'));
     REQUIRE_THAT(readError(bad), Catch::Contains("channel R runs past its list"));
   }
   SECTION("an empty list") {
-    iotest::writeBytes(bad, withValue(good, "channels", "chlist", std::string(1, '\0')));
+    writeFile(bad, withValue(good, "channels", "chlist", std::string(1, '\0')));
     REQUIRE_THAT(readError(bad), Catch::Contains("channel list \"channels\" is empty"));
   }
   SECTION("more channels than a LUT has") {
     std::string five;
     for (const char* name : {"A", "B", "G", "R", "Z"}) five += channelEntry(name, 1);
-    iotest::writeBytes(bad, withValue(good, "channels", "chlist", five + '\0'));
+    writeFile(bad, withValue(good, "channels", "chlist", five + '\0'));
     REQUIRE_THAT(readError(bad), Catch::Contains("not a cloudlut LUT (more than 4 channels)"));
   }
   SECTION("a bad pixel type, subsampling, an overlong name") {
-    iotest::writeBytes(bad, withValue(good, "channels", "chlist", channelEntry("G", 7) + channelEntry("R", 1) + '\0'));
+    writeFile(bad, withValue(good, "channels", "chlist", channelEntry("G", 7) + channelEntry("R", 1) + '\0'));
     REQUIRE_THAT(readError(bad), Catch::Contains("channel G has pixel type 7"));
-    iotest::writeBytes(bad, withValue(good, "channels", "chlist", channelEntry("G", 1) + channelEntry("R", -1) + '\0'));
+    writeFile(bad, withValue(good, "channels", "chlist", channelEntry("G", 1) + channelEntry("R", -1) + '\0'));
     REQUIRE_THAT(readError(bad), Catch::Contains("channel R has pixel type -1"));
-    iotest::writeBytes(bad, withValue(good, "channels", "chlist", channelEntry("G", 1, 1, 2) + '\0'));
+    writeFile(bad, withValue(good, "channels", "chlist", channelEntry("G", 1, 1, 2) + '\0'));
     REQUIRE_THAT(readError(bad), Catch::Contains("channel G is subsampled"));
-    iotest::writeBytes(bad, withValue(good, "channels", "chlist", channelEntry(std::string(256, 'G'), 1) + '\0'));
+    writeFile(bad, withValue(good, "channels", "chlist", channelEntry(std::string(256, 'G'), 1) + '\0'));
     REQUIRE_THAT(readError(bad), Catch::Contains("channel name longer than 255 bytes"));
   }
   SECTION("the untouched file still reads") {
-    iotest::writeBytes(bad, withValue(good, "channels", "chlist", list));
+    writeFile(bad, withValue(good, "channels", "chlist", list));
     REQUIRE(cloudlut::io::readLut(bad).table.channelCount() == 2);
   }
 }
 
 TEST_CASE("io: EXR fixed-size and string attributes are checked by content", "[io][fuzz]") {
-  iotest::TempDir dir;
-  cloudlut::io::writeExrLut(iotest::makeTable({4, 3, 2, 2}, 1), SampleType::Float, dir / "t.exr");
-  const std::string good = iotest::readBytes(dir / "t.exr");
+  TempDir dir;
+  cloudlut::io::writeExrLut(makeTable({4, 3, 2, 2}, 1), SampleType::Float, dir / "t.exr");
+  const std::string good = readFile(dir / "t.exr");
   const auto bad = dir / "bad.exr";
   auto errorWith = [&](const std::string& name, const std::string& type, const std::string& value) {
-    iotest::writeBytes(bad, withValue(good, name, type, value));
+    writeFile(bad, withValue(good, name, type, value));
     return readError(bad);
   };
 
@@ -196,18 +193,18 @@ TEST_CASE("io: EXR fixed-size and string attributes are checked by content", "[i
 }
 
 TEST_CASE("io: EXR header word and attribute types outside a scanline LUT", "[io][fuzz]") {
-  iotest::TempDir dir;
-  cloudlut::io::writeExrLut(iotest::makeTable({4, 3, 2, 2}, 2), SampleType::Float, dir / "t.exr");
-  const std::string good = iotest::readBytes(dir / "t.exr");
+  TempDir dir;
+  cloudlut::io::writeExrLut(makeTable({4, 3, 2, 2}, 2), SampleType::Float, dir / "t.exr");
+  const std::string good = readFile(dir / "t.exr");
   const auto bad = dir / "bad.exr";
 
   std::string tiled = good;
   tiled[5] = static_cast<char>(tiled[5] | 0x02);  // version word flag 0x200
-  iotest::writeBytes(bad, tiled);
+  writeFile(bad, tiled);
   REQUIRE_THAT(readError(bad), Catch::Contains("not a cloudlut LUT (tiled, deep or multi-part EXR)"));
   std::string version3 = good;
   version3[4] = 3;
-  iotest::writeBytes(bad, version3);
+  writeFile(bad, version3);
   REQUIRE_THAT(readError(bad), Catch::Contains("(EXR version 3)"));
 
   // Standard fixed-size attributes another tool may add keep the LUT readable.

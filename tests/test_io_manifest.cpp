@@ -5,29 +5,22 @@
 
 #include "core/Errors.h"
 #include "io/LutIo.h"
-#include "test_io_support.h"
+#include "support/Checks.h"
+#include "support/Files.h"
+#include "support/SmallTables.h"
+#include "support/TempDir.h"
 
 using cloudlut::io::SampleType;
+using namespace cloudlut::test;
 
 namespace {
-
-template <typename F>
-std::string fileErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const cloudlut::FileError& e) {
-    return e.what();
-  }
-  FAIL("expected a FileError");
-  return {};
-}
 
 // A LUT set of two tables: optical_depth in bin (u8) and exr (half), single_scattering in exr.
 nlohmann::json writeSet(const std::filesystem::path& dir) {
   using namespace cloudlut::io;
-  const cloudlut::Table4D od = iotest::makeTable({5, 4, 3, 2}, 2);
+  const cloudlut::Table4D od = makeTable({5, 4, 3, 2}, 2);
   const cloudlut::Table4D ss =
-      iotest::makeTable({4, 3, 3, 2}, 1, 0.0f, 5.0f, 7, "single_scattering");
+      makeTable({4, 3, 3, 2}, 1, 0.0f, 5.0f, 7, "single_scattering");
   writeBinaryLut(od, SampleType::U8, dir / "optical_depth.bin");
   writeExrLut(od, SampleType::Half, dir / "optical_depth.exr");
   writeExrLut(ss, SampleType::Float, dir / "single_scattering.exr");
@@ -48,7 +41,7 @@ nlohmann::json writeSet(const std::filesystem::path& dir) {
 }  // namespace
 
 TEST_CASE("io: manifest round trip loads every table, preferring bin", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   const nlohmann::json manifest = writeSet(dir.path());
   const cloudlut::io::LutSet set = cloudlut::io::readLutSet(dir.path());
   REQUIRE(set.dir == dir.path());
@@ -61,14 +54,14 @@ TEST_CASE("io: manifest round trip loads every table, preferring bin", "[io]") {
   const auto& ss = set.tables.at("single_scattering");
   REQUIRE(ss.sampleType == SampleType::Float);
   REQUIRE(ss.table.data() ==
-          iotest::makeTable({4, 3, 3, 2}, 1, 0.0f, 5.0f, 7, "single_scattering").data());
+          makeTable({4, 3, 3, 2}, 1, 0.0f, 5.0f, 7, "single_scattering").data());
   // No temporary files are left behind.
-  for (const std::string& name : iotest::listDir(dir.path()))
+  for (const std::string& name : listDir(dir.path()))
     REQUIRE(name.find(".tmp.") == std::string::npos);
 }
 
 TEST_CASE("io: readLutSet reports bad manifests", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   const auto manifestPath = dir / "manifest.json";
 
   SECTION("missing manifest") {
@@ -76,7 +69,7 @@ TEST_CASE("io: readLutSet reports bad manifests", "[io]") {
                  Catch::Contains("manifest.json: missing"));
   }
   SECTION("invalid JSON") {
-    iotest::writeBytes(manifestPath, "{\"format\": \"cloudlut-lut-set\", ");
+    writeFile(manifestPath, "{\"format\": \"cloudlut-lut-set\", ");
     REQUIRE_THAT(fileErrorOf([&] { cloudlut::io::readLutSet(dir.path()); }),
                  Catch::Contains("invalid JSON"));
   }
@@ -123,17 +116,17 @@ TEST_CASE("io: readLutSet reports bad manifests", "[io]") {
   }
   SECTION("a damaged table file") {
     writeSet(dir.path());
-    std::string bytes = iotest::readBytes(dir / "optical_depth.bin");
+    std::string bytes = readFile(dir / "optical_depth.bin");
     bytes.resize(bytes.size() - 1);
-    iotest::writeBytes(dir / "optical_depth.bin", bytes);
+    writeFile(dir / "optical_depth.bin", bytes);
     REQUIRE_THAT(fileErrorOf([&] { cloudlut::io::readLutSet(dir.path()); }),
                  Catch::Contains("optical_depth.bin: truncated"));
   }
 }
 
 TEST_CASE("io: writing into a missing or unwritable directory is a usage error", "[io]") {
-  iotest::TempDir dir;
-  const cloudlut::Table4D table = iotest::makeTable({2, 2, 2, 2}, 1);
+  TempDir dir;
+  const cloudlut::Table4D table = makeTable({2, 2, 2, 2}, 1);
   const auto missing = dir / "no" / "such" / "dir";
   REQUIRE_THROWS_AS(cloudlut::io::writeBinaryLut(table, SampleType::Float, missing / "t.bin"),
                     cloudlut::UsageError);
@@ -148,10 +141,10 @@ TEST_CASE("io: writing into a missing or unwritable directory is a usage error",
     REQUIRE_THAT(e.what(), Catch::Contains(missing.string()));
   }
   // A parent that is a file, not a directory.
-  iotest::writeBytes(dir / "file", "x");
+  writeFile(dir / "file", "x");
   REQUIRE_THROWS_AS(cloudlut::io::writeFileAtomically(dir / "file" / "x", "abc"),
                     cloudlut::UsageError);
-  REQUIRE(iotest::listDir(dir.path()) == std::vector<std::string>{"file"});
+  REQUIRE(listDir(dir.path()) == std::vector<std::string>{"file"});
 
   // A directory nobody can create files in, not even root.
   if (std::filesystem::is_directory("/proc/self")) {
@@ -174,14 +167,14 @@ TEST_CASE("io: writing into a missing or unwritable directory is a usage error",
       REQUIRE_THAT(e.what(), Catch::Contains(locked.string()));
     }
     std::filesystem::permissions(locked, std::filesystem::perms::owner_all);
-    REQUIRE(iotest::listDir(locked).empty());
+    REQUIRE(listDir(locked).empty());
   }
 }
 
 TEST_CASE("io: atomic writes replace whole files", "[io]") {
-  iotest::TempDir dir;
+  TempDir dir;
   cloudlut::io::writeFileAtomically(dir / "a.txt", "first version, longer");
   cloudlut::io::writeFileAtomically(dir / "a.txt", "second");
-  REQUIRE(iotest::readBytes(dir / "a.txt") == "second");
-  REQUIRE(iotest::listDir(dir.path()) == std::vector<std::string>{"a.txt"});
+  REQUIRE(readFile(dir / "a.txt") == "second");
+  REQUIRE(listDir(dir.path()) == std::vector<std::string>{"a.txt"});
 }

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "bake/OpticalDepthBaker.h"
+#include "core/Defaults.h"
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
 
@@ -160,7 +161,7 @@ TEST_CASE("optical depth lookup: sphere chord gives tau = sigma rho L exactly", 
   for (int i = 0; i < 100; ++i) {
     const Ray r = randomRay(rng);
     const OpticalDepthSample o = lookupOpticalDepth(t, r.S, r.v, 0.5f);
-    const double expected = 0.07 * 183.8 * 0.5 * chordLength(r.S, r.v);
+    const double expected = defaults::kUnitOpticalRadius * 0.5 * chordLength(r.S, r.v);
     REQUIRE(o.opticalDepth == Approx(expected).epsilon(1e-5));
     REQUIRE(o.transmittance == Approx(std::exp(-expected)).epsilon(1e-4).margin(1e-12));
   }

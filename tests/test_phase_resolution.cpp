@@ -13,7 +13,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "bake/DirectionGrid.h"
 #include "bake/PhaseResolution.h"
 #include "core/Glsl.h"
@@ -59,18 +59,18 @@ TEST_CASE("phase resolution: exact asymmetries match the closed forms", "[phase]
   for (float g : {0.3f, 0.7f, 0.9f, 0.99f}) {
     INFO("g = " << g);
     const double gd = g;  // the phase is evaluated with this float g
-    CHECK(bake::estimatePhaseResolution({1, g}, 5.0 * kDeg).asymmetry == Approx(gd).epsilon(2e-5));
+    CHECK(bake::estimatePhaseResolution({PhaseKind::HenyeyGreenstein, g}, 5.0 * kDeg).asymmetry == Approx(gd).epsilon(2e-5));
     const double cs = 3.0 * gd * (4.0 + gd * gd) / (5.0 * (2.0 + gd * gd));
-    CHECK(bake::estimatePhaseResolution({2, g}, 5.0 * kDeg).asymmetry == Approx(cs).epsilon(2e-5));
+    CHECK(bake::estimatePhaseResolution({PhaseKind::CornetteShanks, g}, 5.0 * kDeg).asymmetry == Approx(cs).epsilon(2e-5));
   }
-  CHECK(std::fabs(bake::estimatePhaseResolution({0, 0.0f}, 5.0 * kDeg).asymmetry) < 1e-6);
+  CHECK(std::fabs(bake::estimatePhaseResolution({PhaseKind::Isotropic, 0.0f}, 5.0 * kDeg).asymmetry) < 1e-6);
 }
 
 TEST_CASE("phase resolution: HG's grid asymmetry agrees with its Legendre moments", "[phase]") {
   for (float g : {0.7f, 0.9f})
     for (int K : {12, 24, 60}) {
       INFO("g = " << g << ", spacing pi/" << K);
-      const bake::PhaseResolutionEstimate e = bake::estimatePhaseResolution({1, g}, kPi / K);
+      const bake::PhaseResolutionEstimate e = bake::estimatePhaseResolution({PhaseKind::HenyeyGreenstein, g}, kPi / K);
       const double legendre = hgGridAsymmetryFromLegendre(g, K);
       CHECK(e.gridAsymmetry == Approx(legendre).margin(2e-6));
       const double eps = std::fabs(legendre - g) / (1.0 - g);
@@ -79,9 +79,10 @@ TEST_CASE("phase resolution: HG's grid asymmetry agrees with its Legendre moment
 }
 
 TEST_CASE("phase resolution: the error vanishes on fine grids and grows as the grid coarsens", "[phase]") {
-  const bake::PhaseSpec phases[] = {{1, 0.7f}, {1, 0.9f}, {2, 0.7f}, {2, 0.9f}, {3, 10.0f}, {3, 30.0f}};
+  const Phase phases[] = {{PhaseKind::HenyeyGreenstein, 0.7f}, {PhaseKind::HenyeyGreenstein, 0.9f}, {PhaseKind::CornetteShanks, 0.7f},
+                          {PhaseKind::CornetteShanks, 0.9f}, {PhaseKind::JendersieDeon, 10.0f}, {PhaseKind::JendersieDeon, 30.0f}};
   for (const auto& p : phases) {
-    INFO("kind " << p.kind << " param " << p.param);
+    INFO(describePhase(p));
     CHECK(bake::estimatePhaseResolution(p, 0.25 * kDeg).relativeError < 1e-3);
     double previous = 0.0;
     for (double deg : {0.5, 1.0, 2.0, 4.0, 8.0, 16.0}) {
@@ -106,10 +107,10 @@ namespace {
 // its mass about ω_j, half about the mirror image ω_j'); the output's first moment about ω_j
 // is then g_j (1 + ω_j·ω_j') / 2 per unit mass, so g_j is read off the nodes near the mirror
 // plane (ω_j·ω_j' > 1/2), where that division is well conditioned.
-double phaseMatrixError(int thetaNodes, int phiNodes, const bake::PhaseSpec& p, double g) {
+double phaseMatrixError(int thetaNodes, int phiNodes, const Phase& p, double g) {
   const bake::DirectionGrid grid(thetaNodes, phiNodes, 1.0);
   const auto M = bake::phaseMatrix(grid, [&](double mu) {
-    return static_cast<double>(glsl::phaseFunction(p.kind, static_cast<float>(mu), p.param));
+    return static_cast<double>(phaseValue(p, static_cast<float>(mu)));
   });
   const int n = grid.count();
   const auto& q = grid.nodeWeights();
@@ -138,10 +139,11 @@ double phaseMatrixError(int thetaNodes, int phiNodes, const bake::PhaseSpec& p, 
 TEST_CASE("phase resolution: the estimate tracks the fast method's own phase matrix", "[phase]") {
   // The estimate at a grid's coarsest spacing against the error the real operator makes:
   // same sign (the hats broaden the phase), and larger by at most half (measured: ~25%).
-  const bake::PhaseSpec phases[] = {{1, 0.7f}, {2, 0.7f}, {2, 0.9f}, {3, 10.0f}};
+  const Phase phases[] = {{PhaseKind::HenyeyGreenstein, 0.7f}, {PhaseKind::CornetteShanks, 0.7f}, {PhaseKind::CornetteShanks, 0.9f},
+                          {PhaseKind::JendersieDeon, 10.0f}};
   for (auto nodes : {std::array<int, 2>{24, 13}, std::array<int, 2>{48, 25}})
     for (const auto& p : phases) {
-      INFO(nodes[0] << "x" << nodes[1] << " grid, kind " << p.kind << " param " << p.param);
+      INFO(nodes[0] << "x" << nodes[1] << " grid, " << describePhase(p));
       const double spacing = std::max(kPi / (nodes[0] - 1), kPi / (nodes[1] - 1));
       const auto e = bake::estimatePhaseResolution(p, spacing);
       const double op = phaseMatrixError(nodes[0], nodes[1], p, e.asymmetry);
@@ -154,13 +156,13 @@ TEST_CASE("phase resolution: the estimate tracks the fast method's own phase mat
 
 TEST_CASE("phase resolution: jd at 10 um is flagged on the fast method's grid, iso never", "[phase]") {
   bake::ScatteringSettings s;
-  s.firstPhase = s.laterPhase = {3, 10.0f};
+  s.firstPhase = s.laterPhase = {PhaseKind::JendersieDeon, 10.0f};
   const auto checks = bake::checkPhaseResolution(s);
   REQUIRE(!checks.empty());
   const auto& c = checks.front();
   CHECK(c.which == "later");
   CHECK(c.estimate.relativeError > bake::kPhaseResolutionTolerance);
-  CHECK(c.estimate.peakValue == Approx(586.0).epsilon(0.01));  // DESIGN.md: ≈ 586 sr⁻¹
+  CHECK(c.estimate.peakValue == Approx(586.0).epsilon(0.01));  // the published fit's forward peak at 10 µm (tests/test_parameterization.cpp)
   CHECK(c.estimate.peakHalfWidth > 0.2 * kDeg);
   CHECK(c.estimate.peakHalfWidth < 1.0 * kDeg);
   // The advised spacing meets the tolerance and a coarser one would not.
@@ -172,7 +174,7 @@ TEST_CASE("phase resolution: jd at 10 um is flagged on the fast method's grid, i
   CHECK(bake::checkPhaseResolution(s).empty());
 
   s.multiple = true;
-  s.firstPhase = s.laterPhase = {0, 0.0f};
+  s.firstPhase = s.laterPhase = {PhaseKind::Isotropic, 0.0f};
   for (auto method : {bake::ScatteringMethod::Fast, bake::ScatteringMethod::Paper})
     for (auto dims : {std::array<int, 4>{32, 64, 16, 8}, std::array<int, 4>{4, 5, 2, 2}}) {
       s.method = method;
@@ -180,7 +182,7 @@ TEST_CASE("phase resolution: jd at 10 um is flagged on the fast method's grid, i
       CHECK(bake::checkPhaseResolution(s, 1e-6).empty());
     }
   for (double deg : {0.5, 5.0, 15.0, 45.0, 90.0}) {
-    const auto e = bake::estimatePhaseResolution({0, 0.0f}, deg * kDeg);
+    const auto e = bake::estimatePhaseResolution({PhaseKind::Isotropic, 0.0f}, deg * kDeg);
     CHECK(e.relativeError < 1e-6);
     CHECK(e.peakHalfWidth == Approx(kPi));  // no peak
   }

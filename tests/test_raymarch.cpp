@@ -6,7 +6,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
+#include "core/Defaults.h"
 #include "reference/ScenePathTracer.h"
 #include "render/GlContext.h"
 #include "render/RayMarchRenderer.h"
@@ -51,7 +52,7 @@ TEST_CASE("raymarch: transmittance of a homogeneous sphere is Beer-Lambert along
       float expected = 0.0f;
       if (disc > 0.0f) {
         const float chordUnit = 2.0f * std::sqrt(disc) / a * std::sqrt(a);  // unit-sphere chord length
-        expected = 1.0f - std::exp(-static_cast<float>(0.07 * 183.8) * 0.3f * chordUnit);
+        expected = 1.0f - std::exp(-static_cast<float>(defaults::kUnitOpticalRadius) * 0.3f * chordUnit);
         ++inside;
       }
       INFO("pixel " << x << "," << y);

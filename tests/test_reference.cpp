@@ -1,7 +1,7 @@
 // The Monte Carlo reference for the homogeneous sphere against closed forms and itself:
 // axis chords with closed-form single scattering, the thin-medium limit, energy conservation
 // of the photon tracer, the backward estimator's normalisation against forward photon
-// tracing, DESIGN.md's photon-tracing table, thread-count determinism and the CLI verb.
+// tracing, the photon-tracing table of docs/MEASURED.md, thread-count determinism and the CLI verb.
 #include <catch2/catch.hpp>
 
 #include <tbb/global_control.h>
@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "core/Glsl.h"
 #include "reference/SphereMonteCarlo.h"
 
@@ -19,8 +19,8 @@ using namespace cloudlut::reference;
 
 namespace {
 
-double phase(const McPhase& p, double mu) {
-  return static_cast<double>(glsl::phaseFunction(p.kind, static_cast<float>(mu), p.param));
+double phase(const Phase& p, double mu) {
+  return static_cast<double>(phaseValue(p, static_cast<float>(mu)));
 }
 
 SphereMcEstimate estimateOne(const SphereMcQuery& q, const SphereMcSettings& s) {
@@ -64,7 +64,7 @@ TEST_CASE("MC thin-medium limit: single = P1 · σ · chord", "[reference]") {
 
 TEST_CASE("Photon tracing conserves energy and matches the unscattered closed form", "[reference]") {
   for (double sigma : {0.8, 6.4}) {
-    const auto p = photonTraceSphere(sigma, {2, 0.9f}, {2, 0.7f}, 20000, 3, 18);
+    const auto p = photonTraceSphere(sigma, defaults::kFirstPhase, defaults::kLaterPhase, 20000, 3, 18);
     CHECK(p.total == Approx(1.0).margin(1e-9));  // a non-absorbing sphere returns everything
     CHECK(p.unscattered == Approx(unscatteredShare(sigma)).margin(0.004));
   }
@@ -95,12 +95,13 @@ TEST_CASE("Backward estimator integrated over the sphere agrees with forward pho
   CHECK(bwd.single + bwd.multipleAll == Approx(1.0 - unscatteredShare(sigma)).margin(0.02));
 }
 
-TEST_CASE("Photon tracing reproduces DESIGN.md's table (HG 0.9 then 0.7)", "[reference]") {
+TEST_CASE("Photon tracing reproduces the measured table of docs/MEASURED.md (HG 0.9 then 0.7)", "[reference]") {
   struct Row { double rho, unscattered, single, m18, beyond; };
   const Row rows[] = {{1.0 / 16, 0.369, 0.345, 0.286, 0.000}, {0.25, 0.048, 0.111, 0.837, 0.004},
                       {0.5, 0.012, 0.048, 0.827, 0.112},      {1.0, 0.003, 0.029, 0.620, 0.348}};
   for (const Row& r : rows) {
-    const auto p = photonTraceSphere(0.07 * 183.8 * r.rho, {1, 0.9f}, {1, 0.7f}, 40000, 17, 18);
+    const auto p = photonTraceSphere(defaults::kUnitOpticalRadius * r.rho, {PhaseKind::HenyeyGreenstein, 0.9f},
+                                     {PhaseKind::HenyeyGreenstein, 0.7f}, 40000, 17, 18);
     double m18 = 0.0;
     for (int k = 2; k <= 18; ++k) m18 += p.byOrder[k];
     CHECK(p.unscattered == Approx(r.unscattered).margin(0.01));
@@ -114,16 +115,19 @@ TEST_CASE("MC phase sampling reproduces the phase functions' mean cosine", "[ref
   // <mu> of HG is g; of Cornette–Shanks 3g(g² + 4) / (5(2 + g²)).
   McRng rng(1, 2, 3);
   const int n = 400000;
-  for (const McPhase& p : {McPhase{1, 0.7f}, McPhase{2, 0.9f}, McPhase{0, 0.0f}}) {
+  for (const Phase& p : {Phase{PhaseKind::HenyeyGreenstein, 0.7f}, Phase{PhaseKind::CornetteShanks, 0.9f},
+                        Phase{PhaseKind::Isotropic, 0.0f}}) {
     double m = 0.0;
     for (int i = 0; i < n; ++i) m += samplePhaseCosine(p, rng);
     m /= n;
     const double g = p.param;
-    const double expected = p.kind == 1 ? g : p.kind == 2 ? 3.0 * g * (g * g + 4.0) / (5.0 * (2.0 + g * g)) : 0.0;
+    const double expected = p.kind == PhaseKind::HenyeyGreenstein ? g
+                           : p.kind == PhaseKind::CornetteShanks ? 3.0 * g * (g * g + 4.0) / (5.0 * (2.0 + g * g))
+                                                                 : 0.0;
     CHECK(m == Approx(expected).margin(0.005));
   }
   // Jendersie–d'Eon at 10 µm: the mean cosine by quadrature of the phase function itself.
-  const McPhase jd{3, 10.0f};
+  const Phase jd{PhaseKind::JendersieDeon, 10.0f};
   double m = 0.0, q = 0.0;
   const int steps = 2000000;
   for (int i = 0; i < steps; ++i) {

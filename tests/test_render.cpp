@@ -9,13 +9,13 @@
 
 #include <glm/geometric.hpp>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
 #include "render/GlContext.h"
 #include "render/Renderer.h"
 #include "scene/Scene.h"
-#include "test_render_support.h"
+#include "support/RenderLuts.h"
 
 using namespace cloudlut;
 using namespace cloudlut::render;

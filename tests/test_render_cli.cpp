@@ -15,12 +15,12 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
 #include "core/Glsl.h"
 #include "core/Errors.h"
 #include "core/TableLookup.h"
 #include "scene/Scene.h"
-#include "test_render_support.h"
+#include "support/RenderLuts.h"
 
 using namespace cloudlut;
 using namespace cloudlut::test;

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <random>
 
 #include "bake/ScatteringBaker.h"
@@ -16,6 +15,7 @@
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
 #include "reference/SphereMonteCarlo.h"
+#include "support/BakedFixtures.h"
 
 using namespace cloudlut;
 
@@ -41,17 +41,8 @@ double bruteForceL1(const glm::dvec3& S, const glm::dvec3& v, const glm::dvec3& 
   return sum;
 }
 
-// Baked tables shared by several test cases (baking is the expensive part).
-const bake::ScatteringResult& bakedDefault(int orders) {
-  static std::map<int, bake::ScatteringResult> cache;
-  auto it = cache.find(orders);
-  if (it == cache.end()) {
-    bake::ScatteringSettings s;
-    s.orders = orders;
-    it = cache.emplace(orders, bake::bakeScattering(s)).first;
-  }
-  return it->second;
-}
+// Baked tables shared by several test cases (baking is the expensive part): once per test run.
+const bake::ScatteringResult& bakedDefault(int orders) { return test::defaultScattering(orders); }
 
 glm::dvec3 randomUnit(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -131,7 +122,7 @@ TEST_CASE("L1 at the table nodes matches closed forms and a brute-force integrat
   const Table4D& t = *r.single;
   const auto& ax = t.axes();
   for (int k = 0; k < ax[3].size; ++k) {
-    const double sigma = 0.07 * 183.8 * std::exp2(ax[3].value(k));
+    const double sigma = defaults::kUnitOpticalRadius * std::exp2(ax[3].value(k));
     // L1 of node (iS, iP, iV): the stored mean source times the opacity of the node's chord 2 cos θv.
     const auto L1 = [&](int iS, int iP, int iV) {
       const float tau = static_cast<float>(sigma * 2.0 * std::cos(ax[2].value(iV)));
@@ -177,7 +168,7 @@ struct SliceCheck {
 SliceCheck checkSlice(const Table4D& single, const Table4D& multiple, int k, int rows, long long paths,
                       bool converged, std::uint64_t seed, bool onNodes = false) {
   std::mt19937_64 rng(seed);
-  const double rho = std::exp2(-4.0 + k), sigma = 0.07 * 183.8 * rho;
+  const double rho = std::exp2(-4.0 + k), sigma = defaults::kUnitOpticalRadius * rho;
   std::vector<reference::SphereMcQuery> q;
   std::vector<double> t1, tm;
   for (int i = 0; i < rows; ++i) {
@@ -225,7 +216,7 @@ TEST_CASE("Single scattering agrees with the Monte Carlo reference at random geo
   std::mt19937_64 rng(2024);
   for (int onNodes = 0; onNodes < 2; ++onNodes)
     for (int k = 0; k < 8; ++k) {
-      const double rho = std::exp2(-4.0 + k), sigma = 0.07 * 183.8 * rho;
+      const double rho = std::exp2(-4.0 + k), sigma = defaults::kUnitOpticalRadius * rho;
       std::vector<reference::SphereMcQuery> q;
       std::vector<double> t1;
       for (int i = 0; i < 60; ++i) {
@@ -316,8 +307,8 @@ TEST_CASE("Scattering tables stay finite at poles, grazing rays, extreme densiti
   s.sMin = -8;  // far thinner and denser than the defaults
   s.sMax = 5;
   s.orders = 4;
-  s.firstPhase = {3, 10.0f};  // Jendersie–d'Eon, 10 µm: forward peak ≈ 586 sr⁻¹
-  s.laterPhase = {3, 10.0f};
+  s.firstPhase = {PhaseKind::JendersieDeon, 10.0f};  // Jendersie–d'Eon, 10 µm: forward peak ≈ 586 sr⁻¹
+  s.laterPhase = {PhaseKind::JendersieDeon, 10.0f};
   CHECK(glsl::phaseFunction(3, 1.0f, 10.0f) == Approx(586.0f).epsilon(0.02));
   const auto r = bake::bakeScattering(s);
   CHECK(allFinite(*r.single));

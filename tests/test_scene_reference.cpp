@@ -8,7 +8,8 @@
 #include <glm/geometric.hpp>
 #include <tbb/global_control.h>
 
-#include "CliRunner.h"
+#include "support/CliRunner.h"
+#include "core/Defaults.h"
 #include "core/Glsl.h"
 #include "io/ExrImage.h"
 #include "reference/ScenePathTracer.h"
@@ -19,7 +20,7 @@ using namespace cloudlut::reference;
 
 namespace {
 
-constexpr double kUnitSigma = 0.07 * 183.8;
+constexpr double kUnitSigma = defaults::kUnitOpticalRadius;
 
 // One homogeneous sphere of world radius `radius` at `center`.
 SceneMedium sphereMedium(const ReferenceParticle& model, double radius, double rho,

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <limits>
 
-#include "CliRunner.h"
-#include "cli/ContactSheet.h"
+#include "support/CliRunner.h"
+#include "io/ContactSheet.h"
 #include "io/LutIo.h"
 
 using namespace cloudlut;
@@ -26,7 +26,7 @@ Table4D rampTable() {
 TEST_CASE("contact sheet draws every slice and marks non-finite values magenta", "[slices]") {
   Table4D t = rampTable();
   t.at(t.index(2, 1, 1, 1), 0) = std::numeric_limits<float>::quiet_NaN();
-  const cli::RgbImage img = cli::drawContactSheet(t, "ramp", {});
+  const io::RgbImage img = io::drawContactSheet(t, "ramp", {});
   REQUIRE(img.width > 0);
   REQUIRE(img.rgb.size() == static_cast<std::size_t>(img.width) * img.height * 3);
   std::size_t magenta = 0;

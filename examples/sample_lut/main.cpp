@@ -8,8 +8,9 @@
 #include <exception>
 #include <fstream>
 
-#include <cloudlut_glsl.hpp>    // the shaders' parameterization and shading, compiled through GLM
-#include <cloudlut_reader.h>    // header-only, dependency-free reader
+#include <cloudlut_glsl.hpp>      // the shaders' parameterization and shading, compiled through GLM
+#include <cloudlut_lut.h>         // header-only, dependency-free reader of the binary tables
+#include <cloudlut_manifest.h>    // optional: manifest.json and the tables' JSON descriptions
 
 namespace {
 
@@ -17,7 +18,7 @@ bool exists(const std::string& path) { return std::ifstream(path).good(); }
 
 // A number from the table's header description, e.g. ("parameters", "first_phase", "kind").
 double described(const cloudlut_reader::Lut& lut, const char* a, const char* b, const char* c, double fallback) {
-  const cloudlut_reader::Json d = cloudlut_reader::parseJson(lut.description, lut.name);
+  const cloudlut_reader::Json d = cloudlut_reader::parseDescription(lut);
   const cloudlut_reader::Json* j = d.find(a);
   if (j && b) j = j->find(b);
   if (j && c) j = j->find(c);

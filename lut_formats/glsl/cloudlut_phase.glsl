@@ -29,13 +29,14 @@ CLOUDLUT_FN float phaseDraine(float mu, float g, float a) {
   return phaseHenyeyGreenstein(mu, g) * (1.0f + a * mu * mu) / (1.0f + a * (1.0f + 2.0f * g * g) / 3.0f);
 }
 
-// Jendersie–d'Eon fit (seed 000) for water droplets of diameter d µm (valid 5 ≤ d ≤ 50):
-// returns (g_HG, g_D, alpha, w).
+// Jendersie–d'Eon fit for water droplets of diameter d µm (valid 5 ≤ d ≤ 50), with the
+// published constants (Jendersie & d'Eon 2023; seed 000 quotes the fit, its w constant with a
+// typo, −0.664888 for −0.665888): returns (g_HG, g_D, alpha, w).
 CLOUDLUT_FN vec4 jendersieDeonParameters(float d) {
   return vec4(exp(-0.0990567f / (d - 1.67154f)),
               exp(-2.20679f / (d + 3.91029f) - 0.428934f),
               exp(3.62489f - 8.29288f / (d + 5.52825f)),
-              exp(-0.599085f / (d - 0.641583f) - 0.664888f));
+              exp(-0.599085f / (d - 0.641583f) - 0.665888f));
 }
 
 // Jendersie–d'Eon phase: (1 - w) HG(g_HG) + w Draine(g_D, alpha), parameters from above.
@@ -43,11 +44,17 @@ CLOUDLUT_FN float phaseJendersieDeon(float mu, vec4 p) {
   return (1.0f - p.w) * phaseHenyeyGreenstein(mu, p.x) + p.w * phaseDraine(mu, p.y, p.z);
 }
 
-// Phase function selected by kind: 0 isotropic, 1 Henyey–Greenstein, 2 Cornette–Shanks,
-// 3 Jendersie–d'Eon (param = droplet diameter in µm); param is g for kinds 1 and 2.
+// The kinds of phaseFunction() (the tables' JSON stores the same numbers).
+const int CLOUDLUT_PHASE_ISOTROPIC = 0;
+const int CLOUDLUT_PHASE_HENYEY_GREENSTEIN = 1;
+const int CLOUDLUT_PHASE_CORNETTE_SHANKS = 2;
+const int CLOUDLUT_PHASE_JENDERSIE_DEON = 3;
+
+// Phase function selected by kind: isotropic, Henyey–Greenstein (param = g), Cornette–Shanks
+// (param = g) or Jendersie–d'Eon (param = droplet diameter in µm); any other kind is isotropic.
 CLOUDLUT_FN float phaseFunction(int kind, float mu, float param) {
-  if (kind == 1) return phaseHenyeyGreenstein(mu, param);
-  if (kind == 2) return phaseCornetteShanks(mu, param);
-  if (kind == 3) return phaseJendersieDeon(mu, jendersieDeonParameters(param));
+  if (kind == CLOUDLUT_PHASE_HENYEY_GREENSTEIN) return phaseHenyeyGreenstein(mu, param);
+  if (kind == CLOUDLUT_PHASE_CORNETTE_SHANKS) return phaseCornetteShanks(mu, param);
+  if (kind == CLOUDLUT_PHASE_JENDERSIE_DEON) return phaseJendersieDeon(mu, jendersieDeonParameters(param));
   return phaseIsotropic();
 }

@@ -37,10 +37,9 @@ EnergyInputs energyInputsFromParameters(const Table4D* single, const Table4D* mu
   if (!t) throw std::invalid_argument("energy balance: no scattering table given");
   EnergyInputs in;
   const auto& p = t->parameters();
-  in.unitOpticalRadius = p.value("extinction_per_m", 0.07) * p.value("radius_m", 183.8);
-  const auto phase = (single ? single->parameters() : p).value("first_phase", nlohmann::json::object());
-  in.firstPhaseKind = phase.value("kind", 2);
-  in.firstPhaseParam = phase.value("param", 0.9f);
+  in.unitOpticalRadius = p.value("extinction_per_m", defaults::kExtinctionPerMetre) *
+                         p.value("radius_m", defaults::kParticleRadiusMetres);
+  in.firstPhase = recordedPhase(single ? single->parameters() : p, "first_phase", defaults::kFirstPhase);
   return in;
 }
 
@@ -87,7 +86,7 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
       double a1 = 0.0, am = 0.0;
       for (std::size_t j = 0; j < alpha.size(); ++j) {
         const double ca = std::cos(alpha[j]), sa = std::sin(alpha[j]);
-        const double ph = static_cast<double>(glsl::phaseFunction(in.firstPhaseKind, static_cast<float>(ca), in.firstPhaseParam));
+        const double ph = static_cast<double>(phaseValue(in.firstPhase, static_cast<float>(ca)));
         double b1 = 0.0, bm = 0.0;
         for (int b = 0; b < nBeta; ++b) {
           const double beta = kPi * (b + 0.5) / nBeta;

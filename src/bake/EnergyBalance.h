@@ -13,6 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/Defaults.h"
+#include "core/Phase.h"
 #include "core/Table4D.h"
 
 namespace cloudlut::bake {
@@ -32,9 +34,8 @@ struct EnergyBalance {
 };
 
 struct EnergyInputs {
-  double unitOpticalRadius = 0.07 * 183.8;  // σ of ρ = 1: extinction · radius
-  int firstPhaseKind = 2;                   // P1 as in phaseFunction()
-  float firstPhaseParam = 0.9f;
+  double unitOpticalRadius = defaults::kUnitOpticalRadius;  // σ of ρ = 1: extinction · radius
+  Phase firstPhase = defaults::kFirstPhase;                 // P1
 };
 
 // Parameters from the tables' own "parameters" (extinction_per_m, radius_m, first_phase),

@@ -30,6 +30,7 @@
 // nearly isotropic diffusion modes that plain iteration would need thousands of orders for.
 // The baker then closes the tail's amplitude on energy (ScatteringBaker.cpp).
 #include <array>
+#include <memory>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -58,16 +59,21 @@ struct FastResolution {
 // `table` (axes θS, φv, θv, log2 ρ) with orders 2 … N (N = settings.orders, or 18 when
 // converged). When converged (orders <= 0), the remaining orders N+1 … ∞ go to `tailTable`
 // (same axes) if given. Sets `report` to what it measured (orders, seconds, iterations).
+// The steps of a slice (MultipleScattering.cpp): the first-scattering source J_2, the transport
+// stencil (ScatteringOperator.h), the orders, the tail (TailSolver.h) and the gather.
 class FastMultipleScattering {
  public:
   FastMultipleScattering(const ScatteringSettings& settings, const FastResolution& res = {});
   ~FastMultipleScattering();
+  FastMultipleScattering(const FastMultipleScattering&) = delete;
+  FastMultipleScattering& operator=(const FastMultipleScattering&) = delete;
   void bakeSlice(double sigma, int slice, Table4D& table, Table4D* tailTable, nlohmann::json& report,
                  const ProgressFn& progress, double progressBase, double progressSpan) const;
 
  private:
+  // What every slice shares: settings, resolution, direction grids, phase matrices.
   struct Shared;
-  Shared* shared_;
+  std::unique_ptr<const Shared> shared_;
 };
 
 }  // namespace cloudlut::bake

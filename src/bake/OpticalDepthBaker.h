@@ -12,6 +12,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/Defaults.h"
 #include "core/Progress.h"
 #include "core/ReferenceParticle.h"
 #include "core/Table4D.h"
@@ -19,12 +20,12 @@
 namespace cloudlut::bake {
 
 struct OpticalDepthSettings {
-  std::array<int, 4> dims{64, 32, 64, 32};
+  std::array<int, 4> dims = defaults::kOpticalDepthDims;
   // Density samples along a full diameter; a chord of length L takes about steps·L/2 of them
   // (at least 2), as composite two-point Gauss–Legendre panels. 0 = defaultSteps(model).
   int steps = 0;
-  double extinction = 0.07;  // β, m⁻¹ (recorded in the table's parameters)
-  double radius = 183.8;     // R, m
+  double extinction = defaults::kExtinctionPerMetre;  // β, m⁻¹ (recorded in the table's parameters)
+  double radius = defaults::kParticleRadiusMetres;    // R, m
 };
 
 struct ChordIntegral {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "bake/MultipleScattering.h"
@@ -15,8 +16,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // P(cos θ), sr⁻¹.
-double phaseAt(const PhaseSpec& p, double theta) {
-  return glsl::phaseFunction(p.kind, static_cast<float>(std::cos(theta)), p.param);
+double phaseAt(const Phase& p, double theta) {
+  return phaseValue(p, static_cast<float>(std::cos(theta)));
 }
 
 // Over one interval [a, b] between adjacent nodes: the phase's mass that the hat functions of
@@ -24,7 +25,7 @@ double phaseAt(const PhaseSpec& p, double theta) {
 // (θ − a)/(b − a) for `right` (dimensionless), and the exact first moment ∫_a^b P μ dΩ.
 // Composite 8-point Gauss–Legendre; an interval starting at θ = 0 is graded as θ = b ξ³ (the
 // forward peak sits there), the others are split into uniform panels.
-void intervalMoments(const PhaseSpec& p, double a, double b, double& left, double& right, double& moment) {
+void intervalMoments(const Phase& p, double a, double b, double& left, double& right, double& moment) {
   const GaussRule& g = gaussLegendre(8);
   left = right = moment = 0.0;
   const bool graded = a == 0.0;
@@ -60,7 +61,7 @@ double uniformSpacing(double spacing) { return kPi / (static_cast<double>(unifor
 
 }  // namespace
 
-double phasePeakHalfWidth(const PhaseSpec& phase) {
+double phasePeakHalfWidth(const Phase& phase) {
   const double half = 0.5 * phaseAt(phase, 0.0);
   // First crossing on a grid geometric in θ (peaks span 1e-4 … 1 rad), then bisection.
   double lo = 0.0, hi = -1.0;
@@ -79,7 +80,7 @@ double phasePeakHalfWidth(const PhaseSpec& phase) {
   return hi;
 }
 
-PhaseResolutionEstimate estimatePhaseResolution(const PhaseSpec& phase, const std::vector<double>& nodes) {
+PhaseResolutionEstimate estimatePhaseResolution(const Phase& phase, const std::vector<double>& nodes) {
   if (nodes.size() < 2 || nodes.front() != 0.0 || std::fabs(nodes.back() - kPi) > 1e-9)
     throw std::invalid_argument("phase resolution: nodes must run from 0 to pi");
   for (std::size_t k = 1; k < nodes.size(); ++k)
@@ -108,11 +109,11 @@ PhaseResolutionEstimate estimatePhaseResolution(const PhaseSpec& phase, const st
   return e;
 }
 
-PhaseResolutionEstimate estimatePhaseResolution(const PhaseSpec& phase, double spacing) {
+PhaseResolutionEstimate estimatePhaseResolution(const Phase& phase, double spacing) {
   return estimatePhaseResolution(phase, uniformNodes(spacing));
 }
 
-double spacingForError(const PhaseSpec& phase, double tolerance) {
+double spacingForError(const Phase& phase, double tolerance) {
   constexpr int kMax = 8192;
   const auto ok = [&](int K) { return estimatePhaseResolution(phase, kPi / K).relativeError <= tolerance; };
   // Grow K geometrically to the first K that meets the tolerance, then bisect below it.
@@ -143,8 +144,6 @@ std::vector<double> sunGradedNodes(int n) {
   return nodes;
 }
 
-bool samePhase(const PhaseSpec& a, const PhaseSpec& b) { return a.kind == b.kind && a.param == b.param; }
-
 // Nodes over [0, span] (radians) for a spacing of at most `spacing`: ceil(span/spacing) + 1.
 int nodesFor(double span, double spacing) { return static_cast<int>(std::ceil(span / spacing - 1e-9)) + 1; }
 
@@ -153,9 +152,9 @@ int nodesFor(double span, double spacing) { return static_cast<int>(std::ceil(sp
 std::vector<PhaseResolutionCheck> checkPhaseResolution(const ScatteringSettings& settings, double tolerance) {
   std::vector<PhaseResolutionCheck> checks;
   if (!settings.multiple) return checks;
-  const auto uniform = [&](const std::string& grid, const char* which, const PhaseSpec& phase, double spacing,
+  const auto uniform = [&](const std::string& grid, const char* which, const Phase& phase, double spacing,
                            const auto& advise) {
-    if (phase.kind == 0) return;
+    if (phase.kind == PhaseKind::Isotropic) return;
     const PhaseResolutionEstimate e = estimatePhaseResolution(phase, spacing);
     if (e.relativeError <= tolerance) return;
     const double needed = spacingForError(phase, tolerance);
@@ -172,8 +171,8 @@ std::vector<PhaseResolutionCheck> checkPhaseResolution(const ScatteringSettings&
               if (res.dirPhi < n) advice += std::string(res.dirTheta < n ? " and" : "") + " dirPhi >= " + std::to_string(n);
               return advice + " in MultipleScattering.h";
             });
-    const PhaseSpec& first = settings.firstPhase;
-    if (first.kind != 0) {
+    const Phase& first = settings.firstPhase;
+    if (first.kind != PhaseKind::Isotropic) {
       const PhaseResolutionEstimate e = estimatePhaseResolution(first, sunGradedNodes(res.fineTheta));
       if (e.relativeError > tolerance) {
         int n = res.fineTheta;
@@ -196,10 +195,29 @@ std::vector<PhaseResolutionCheck> checkPhaseResolution(const ScatteringSettings&
     const std::string grid = "the paper method's " + std::to_string(2 * (d[2] - 1) + 1) + "x" + std::to_string(d[1]) +
                              " direction grid";
     uniform(grid, "later", settings.laterPhase, spacing, advise);
-    if (!samePhase(settings.firstPhase, settings.laterPhase))
+    if (settings.firstPhase != settings.laterPhase)
       uniform(grid, "first", settings.firstPhase, spacing, advise);
   }
   return checks;
+}
+
+std::string phaseResolutionWarning(const ScatteringSettings& settings, const std::string& program) {
+  constexpr double kTolerance = kPhaseResolutionTolerance, kDeg = 180.0 / kPi;
+  const auto checks = checkPhaseResolution(settings, kTolerance);
+  if (checks.empty()) return {};
+  std::string line = program + ": warning: direction grid too coarse for the phase function:";
+  for (std::size_t i = 0; i < checks.size(); ++i) {
+    const auto& c = checks[i];
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "%s %s phase %s (g=%.3f; forward peak %.4g sr^-1, half-width %.2f deg) on %s (spacing %.2f deg): "
+                  "expected error %.1f%% in 1-g; spacing <= %.2f deg brings it under %.0f%% (%s)",
+                  i ? ";" : "", c.which.c_str(), describePhase(c.phase).c_str(), c.estimate.asymmetry,
+                  c.estimate.peakValue, c.estimate.peakHalfWidth * kDeg, c.grid.c_str(), c.spacing * kDeg,
+                  100.0 * c.estimate.relativeError, c.neededSpacing * kDeg, 100.0 * kTolerance, c.advice.c_str());
+    line += buf;
+  }
+  return line;
 }
 
 }  // namespace cloudlut::bake

@@ -38,23 +38,23 @@ struct PhaseResolutionEstimate {
 
 // The estimate for a uniform grid of angular spacing `spacing` (radians, in (0, π]): nodes
 // θ_k = kπ/K with K = ceil(π / spacing), so the spacing actually used is π/K ≤ `spacing`.
-PhaseResolutionEstimate estimatePhaseResolution(const PhaseSpec& phase, double spacing);
+PhaseResolutionEstimate estimatePhaseResolution(const Phase& phase, double spacing);
 
 // The estimate for explicit nodes in the scattering angle (radians, ascending, first 0, last π).
-PhaseResolutionEstimate estimatePhaseResolution(const PhaseSpec& phase, const std::vector<double>& nodes);
+PhaseResolutionEstimate estimatePhaseResolution(const Phase& phase, const std::vector<double>& nodes);
 
 // The largest uniform spacing π/K (radians) whose estimate is at most `tolerance`
 // (dimensionless), searched over K up to 8192; returns π/8192 if even that is not enough.
-double spacingForError(const PhaseSpec& phase, double tolerance);
+double spacingForError(const Phase& phase, double tolerance);
 
 // Peak half-width alone (radians), as in PhaseResolutionEstimate::peakHalfWidth.
-double phasePeakHalfWidth(const PhaseSpec& phase);
+double phasePeakHalfWidth(const Phase& phase);
 
 // One phase function on one grid of a bake: what the warning reports.
 struct PhaseResolutionCheck {
   std::string grid;       // which grid, e.g. "the fast method's 24x13 direction grid"
   std::string which;      // "first" (first scattering of sunlight) or "later" (every later order)
-  PhaseSpec phase;
+  Phase phase;
   double spacing = 0;     // radians: the spacing the estimate used (the grid's coarsest)
   PhaseResolutionEstimate estimate;
   double neededSpacing = 0;  // radians: the largest spacing whose ε is within the tolerance
@@ -79,5 +79,11 @@ struct PhaseResolutionCheck {
 inline constexpr double kPhaseResolutionTolerance = 0.02;
 std::vector<PhaseResolutionCheck> checkPhaseResolution(const ScatteringSettings& settings,
                                                        double tolerance = kPhaseResolutionTolerance);
+
+// The checks of checkPhaseResolution(settings, kPhaseResolutionTolerance) as one warning line
+// for `program` ("cloudlut bake"): per grid, the phase, its asymmetry, peak and half-width, the
+// grid's spacing, the expected error in 1 − g and the resolution that brings it under the
+// tolerance. Empty when there is nothing to warn about.
+std::string phaseResolutionWarning(const ScatteringSettings& settings, const std::string& program);
 
 }  // namespace cloudlut::bake

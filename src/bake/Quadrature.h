@@ -31,4 +31,16 @@ double sunlitRayIntegral(const glm::dvec3& x, const glm::dvec3& d, const glm::dv
 double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm::dvec3& l,
                              double sigma, double length);
 
+// Quadrature along a ray of the fast multiple-scattering method: ∫_0^d σe^{−σs} f(s) ds ≈ Σ w f(s).
+// Near part (the first six mean free paths, where the attenuation dominates) in u = 1 − e^{−σs}
+// on the panels
+// [0, U₁/8] and [U₁/8, U₁], U₁ = 1 − e^{−min(σd, 6)}; far part (s > 6/σ) in s itself, where
+// the source may grow as fast as the light decays (light crossing the particle toward its dark
+// side) and u would crowd it into a singular corner. pts = points per panel. Dense particles
+// (σ ≥ 20) use u over the whole ray: panels [0, U/16], [U/16, U/4], [U/4, U]. The far weights
+// carry exactly the far mass e^{−6} − e^{−σd}, so the discrete transport conserves energy.
+// Fills s (distances from the ray's start, ascending within each panel) and w; `total` points
+// at least (every panel gets two or more).
+void attenuatedRayRule(double sigma, double length, int total, std::vector<double>& s, std::vector<double>& w);
+
 }  // namespace cloudlut::bake

@@ -27,22 +27,19 @@ void validate(const ScatteringSettings& s) {
     throw std::invalid_argument("the density range needs finite sMin < sMax within [-40, 40]");
   if (!(s.extinction > 0) || !(s.radius > 0) || !std::isfinite(s.extinction * s.radius))
     throw std::invalid_argument("extinction and radius must be positive");
-  for (const PhaseSpec* p : {&s.firstPhase, &s.laterPhase}) {
-    if (p->kind < 0 || p->kind > 3) throw std::invalid_argument("phase kind must be 0 (iso), 1 (HG), 2 (CS) or 3 (JD)");
-    if ((p->kind == 1 || p->kind == 2) && !(p->param > -0.999f && p->param < 0.999f))
+  for (const Phase* p : {&s.firstPhase, &s.laterPhase}) {
+    if (!phaseKindFromInt(glslKind(p->kind))) throw std::invalid_argument("phase kind must be 0 (iso), 1 (HG), 2 (CS) or 3 (JD)");
+    if ((p->kind == PhaseKind::HenyeyGreenstein || p->kind == PhaseKind::CornetteShanks) &&
+        !(p->param > -0.999f && p->param < 0.999f))
       throw std::invalid_argument("phase g must lie in (-0.999, 0.999)");
-    if (p->kind == 3 && !(p->param >= 5.0f && p->param <= 50.0f))
+    if (p->kind == PhaseKind::JendersieDeon &&
+        !(p->param >= defaults::kDropletDiameterMinUm && p->param <= defaults::kDropletDiameterMaxUm))
       throw std::invalid_argument("Jendersie-d'Eon droplet diameter must lie in [5, 50] um");
   }
   if (!s.single && !s.multiple) throw std::invalid_argument("nothing to bake: neither single nor multiple");
   if (s.method == ScatteringMethod::Paper && s.orders <= 0)
     throw std::invalid_argument("the paper method computes a fixed number of orders (orders >= 2)");
   checkTableFitsInMemory(s.dims, 1, (s.single ? 1 : 0) + (s.multiple ? 1 : 0));
-}
-
-nlohmann::json phaseJson(const PhaseSpec& p) {
-  static const char* names[] = {"isotropic", "henyey_greenstein", "cornette_shanks", "jendersie_deon"};
-  return {{"kind", p.kind}, {"param", p.param}, {"name", names[p.kind]}};
 }
 
 Table4D makeTable(const ScatteringSettings& s, const char* name, const char* channel, const char* meaning) {
@@ -56,8 +53,8 @@ Table4D makeTable(const ScatteringSettings& s, const char* name, const char* cha
   p["extinction_per_m"] = s.extinction;
   p["radius_m"] = s.radius;
   p["unit_optical_radius"] = s.extinction * s.radius;
-  p["first_phase"] = phaseJson(s.firstPhase);
-  p["later_phase"] = phaseJson(s.laterPhase);
+  p["first_phase"] = phaseToJson(s.firstPhase);
+  p["later_phase"] = phaseToJson(s.laterPhase);
   p["method"] = toString(s.method);
   p["density_range_log2"] = {s.sMin, s.sMax};
   p["particle"] = "homogeneous unit sphere";
@@ -150,8 +147,7 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
         // its amplitude. The scale factor measures the operator's conservation error.
         EnergyInputs ein;
         ein.unitOpticalRadius = sigma1;
-        ein.firstPhaseKind = settings.firstPhase.kind;
-        ein.firstPhaseParam = settings.firstPhase.param;
+        ein.firstPhase = settings.firstPhase;
         const Table4D& single = result.single ? *result.single : *closureSingle;
         const EnergyBalance head = computeEnergyBalance(&single, &t, ein);
         const EnergyBalance rest = computeEnergyBalance(nullptr, &*tail, ein);
@@ -190,8 +186,7 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
   const Table4D* m = result.multiple ? &*result.multiple : nullptr;
   EnergyInputs ein;
   ein.unitOpticalRadius = sigma1;
-  ein.firstPhaseKind = settings.firstPhase.kind;
-  ein.firstPhaseParam = settings.firstPhase.param;
+  ein.firstPhase = settings.firstPhase;
   report["energy"] = computeEnergyBalance(s, m, ein).toJson()["slices"];
   const double tEnergy = std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
   report["orders"] = settings.orders > 0 ? nlohmann::json(settings.orders) : nlohmann::json("converged");

@@ -1,6 +1,6 @@
 #pragma once
-// The single- and multiple-scattering tables of the homogeneous unit sphere (seed §4.2–4.3,
-// DESIGN.md conventions), 4D tables over (θS, φv, θv, log2 ρ):
+// The single- and multiple-scattering tables of the homogeneous unit sphere (seed §4.2–4.3, the
+// particle-space conventions of docs/ENGINE_GUIDE.md §2), 4D tables over (θS, φv, θv, log2 ρ):
 //   "single_scattering"   L1(S, v) = ∫_0^chord σ e^{-σt} e^{-σ d_sun(S + t v)} dt, WITHOUT the
 //                         phase function (single = P1(v·l) · L1 exactly);
 //   "multiple_scattering" orders 2 … N (or 2 … ∞, "converged") of the radiance leaving the
@@ -24,6 +24,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/Defaults.h"
+#include "core/Phase.h"
 #include "core/Progress.h"
 #include "core/Table4D.h"
 
@@ -31,20 +33,12 @@ namespace cloudlut::bake {
 
 enum class ScatteringMethod { Fast, Paper };
 
-// Phase function as in phaseFunction() of cloudlut_phase.glsl: kind 0 isotropic,
-// 1 Henyey–Greenstein (param = g), 2 Cornette–Shanks (param = g), 3 Jendersie–d'Eon
-// (param = droplet diameter in µm).
-struct PhaseSpec {
-  int kind = 2;
-  float param = 0.9f;
-};
-
 struct ScatteringSettings {
-  std::array<int, 4> dims{32, 64, 16, 8};  // θS, φv, θv, ρ nodes
-  double sMin = -4, sMax = 3;              // log2 ρ range of the density axis
-  double extinction = 0.07, radius = 183.8;  // β (1/m), R (m)
-  PhaseSpec firstPhase{2, 0.9f}, laterPhase{2, 0.7f};
-  int orders = 18;  // highest order in the multiple table; <= 0 means converged (2 … ∞)
+  std::array<int, 4> dims = defaults::kScatteringDims;  // θS, φv, θv, ρ nodes
+  double sMin = defaults::kDensitySlopeMin, sMax = defaults::kDensitySlopeMax;  // log2 ρ range of the density axis
+  double extinction = defaults::kExtinctionPerMetre, radius = defaults::kParticleRadiusMetres;  // β (1/m), R (m)
+  Phase firstPhase = defaults::kFirstPhase, laterPhase = defaults::kLaterPhase;
+  int orders = defaults::kScatteringOrders;  // highest order in the multiple table; <= 0 means converged (2 … ∞)
   ScatteringMethod method = ScatteringMethod::Fast;
   bool single = true, multiple = true;
 };

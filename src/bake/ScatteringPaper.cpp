@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -11,6 +12,7 @@
 #include "bake/Quadrature.h"
 #include "bake/SingleScattering.h"
 #include "core/Glsl.h"
+#include "cloudlut_quadrilinear.h"
 
 namespace cloudlut::bake {
 
@@ -46,25 +48,17 @@ float sampleVolume(const Volume& vol, const std::vector<float>& f, const glm::dv
   const glm::vec3 a = glsl::scatteringAngles(n, glm::vec3(v), glm::vec3(0.0f, 0.0f, 1.0f));
   const double c[4] = {a.x / kPi * (vol.nS - 1), a.y / (2.0 * kPi) * (vol.nP - 1), a.z / kPi * (vol.nV - 1),
                        r * (vol.nR - 1)};
-  const int n4[4] = {vol.nS, vol.nP, vol.nV, vol.nR};
-  int i[4];
+  const std::uint32_t n4[4] = {static_cast<std::uint32_t>(vol.nS), static_cast<std::uint32_t>(vol.nP),
+                               static_cast<std::uint32_t>(vol.nV), static_cast<std::uint32_t>(vol.nR)};
+  std::uint32_t i[4];
   float fr[4];
   for (int k = 0; k < 4; ++k) {
     const double cc = std::clamp(c[k], 0.0, static_cast<double>(n4[k] - 1));
-    i[k] = std::min(static_cast<int>(cc), n4[k] - 2);
+    i[k] = std::min(static_cast<std::uint32_t>(cc), n4[k] - 2);
     fr[k] = static_cast<float>(cc - i[k]);
   }
   float out = 0.0f;
-  for (int corner = 0; corner < 16; ++corner) {
-    float w = 1.0f;
-    int j[4];
-    for (int k = 0; k < 4; ++k) {
-      const bool hi = (corner >> k) & 1;
-      j[k] = i[k] + (hi ? 1 : 0);
-      w *= hi ? fr[k] : 1.0f - fr[k];
-    }
-    out += w * f[vol.index(j[0], j[1], j[2], j[3])];
-  }
+  cloudlut_reader::interpolateCell(f.data(), n4, 1, i, fr, &out);
   return out;
 }
 
@@ -79,7 +73,7 @@ void bakePaperMultipleScattering(const ScatteringSettings& settings, Table4D& ta
   const glm::dvec3 l(0, 0, 1);
   const std::size_t N = vol.size();
   const int nRho = d[3];
-  const PhaseSpec p1 = settings.firstPhase, pm = settings.laterPhase;
+  const Phase p1 = settings.firstPhase, pm = settings.laterPhase;
 
   // Gather directions: the table's own (φv, θv) nodes (periodic φ node counted once), with
   // weights ∫ hat(θ) sinθ dθ · Δφ.
@@ -140,9 +134,9 @@ void bakePaperMultipleScattering(const ScatteringSettings& settings, Table4D& ta
             glm::dvec3 Pw, w;
             cellGeometry(vol, iS, jP, jV, iR, Pw, w);
             double value = L[vol.index(iS, jP, jV, iR)];
-            if (n == 2) value *= glsl::phaseFunction(p1.kind, static_cast<float>(glm::dot(w, l)), p1.param);
+            if (n == 2) value *= phaseValue(p1, static_cast<float>(glm::dot(w, l)));
             acc += wTheta[jV] * dPhi * value *
-                   glsl::phaseFunction(pm.kind, static_cast<float>(glm::dot(w, v)), pm.param);
+                   phaseValue(pm, static_cast<float>(glm::dot(w, v)));
           }
         J[c] = static_cast<float>(acc);
       });

@@ -4,7 +4,7 @@
 #include <set>
 #include <string>
 
-#include "cli/BenchSuites.h"
+#include "bench/BenchSuites.h"
 #include "cli/Command.h"
 #include "cli/Options.h"
 #include "cli/TtyProgress.h"
@@ -31,16 +31,16 @@ int runBench(int argc, char** argv) {
   std::filesystem::create_directories(out, ec);
   if (ec || !std::filesystem::is_directory(out)) throw UsageError("cannot create output directory '" + out.string() + "'");
 
-  BenchOptions opts;
+  bench::BenchOptions opts;
   opts.quick = args.count("quick") > 0;
   opts.threads = args["threads"].as<int>();
   if (opts.threads < 0) throw UsageError("--threads must be 0 (all cores) or positive");
   opts.progress = makeTtyProgress(args.count("quiet") > 0);
-  BenchReport report;
-  if (suite == "optical-depth" || suite == "all") benchOpticalDepth(report, opts);
-  if (suite == "scattering" || suite == "all") benchScattering(report, opts, out);
-  if (suite == "ground-truth" || suite == "all") benchGroundTruth(report, opts, out);
-  if (suite == "render" || suite == "all") benchRender(report, opts);
+  bench::BenchReport report;
+  if (suite == "optical-depth" || suite == "all") bench::benchOpticalDepth(report, opts);
+  if (suite == "scattering" || suite == "all") bench::benchScattering(report, opts, out);
+  if (suite == "ground-truth" || suite == "all") bench::benchGroundTruth(report, opts, out);
+  if (suite == "render" || suite == "all") bench::benchRender(report, opts);
   finishTtyProgress();
   report.writeCsv(out / "bench.csv");
   report.print();

@@ -3,9 +3,11 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include <tbb/global_control.h>
 
+#include "core/Defaults.h"
 #include "core/Errors.h"
 
 namespace cloudlut::cli {
@@ -83,6 +85,71 @@ double requirePositive(double value, const std::string& option) {
   if (!(value > 0.0) || !std::isfinite(value))
     throw UsageError("--" + option + " must be a positive number");
   return value;
+}
+
+glm::vec3 parseVec3Option(const std::string& text, const std::string& option, bool colour) {
+  const std::string expected = colour ? "three comma-separated non-negative numbers r,g,b"
+                                      : "three comma-separated numbers x,y,z";
+  glm::vec3 v(0.0f);
+  std::size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t end = k < 2 ? text.find(',', start) : text.size();
+    if (end == std::string::npos) throw UsageError("--" + option + ": expected " + expected + ", got '" + text + "'");
+    const std::string part = text.substr(start, end - start);
+    double value = 0.0;
+    const auto r = std::from_chars(part.data(), part.data() + part.size(), value);
+    if (part.empty() || r.ec != std::errc() || r.ptr != part.data() + part.size() || !std::isfinite(value) ||
+        std::abs(value) > 1e30 || (colour && value < 0.0))
+      throw UsageError("--" + option + ": expected " + expected + ", got '" + text + "'");
+    v[k] = static_cast<float>(value);
+    start = end + 1;
+  }
+  return v;
+}
+
+std::string defaultText(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", value);
+  return buf;
+}
+
+void addPhaseOptions(cxxopts::Options& options, bool defaultFromLuts) {
+  const std::string kinds = "phase functions: cs (Cornette-Shanks), hg (Henyey-Greenstein), jd (Jendersie-d'Eon), iso";
+  if (defaultFromLuts)
+    options.add_options()("phase", kinds + " (default: the LUT set's, else cs with g1 " +
+                                       defaultText(static_cast<double>(defaults::kFirstScatteringG)) + ", gm " +
+                                       defaultText(static_cast<double>(defaults::kMultipleScatteringG)) + ")",
+                          cxxopts::value<std::string>());
+  else
+    options.add_options()("phase", kinds, cxxopts::value<std::string>()->default_value("cs"));
+  options.add_options()
+    ("g1", "asymmetry g of the first scattering of sunlight (cs, hg)",
+     cxxopts::value<double>()->default_value(defaultText(static_cast<double>(defaults::kFirstScatteringG))))
+    ("gm", "asymmetry g of every later scattering (cs, hg)",
+     cxxopts::value<double>()->default_value(defaultText(static_cast<double>(defaults::kMultipleScatteringG))))
+    ("droplet-um", "droplet diameter in micrometres for jd (one phase for every order)",
+     cxxopts::value<double>()->default_value(defaultText(static_cast<double>(defaults::kDropletDiameterUm))));
+}
+
+std::optional<PhasePair> parsePhaseOptions(const cxxopts::ParseResult& args) {
+  if (!args.count("phase") && !args["phase"].has_default()) return std::nullopt;  // count() omits defaults
+  const std::string phase = args["phase"].as<std::string>();
+  if (phase == "cs" || phase == "hg") {
+    const double g1 = args["g1"].as<double>(), gm = args["gm"].as<double>();
+    if (!(std::fabs(g1) < 1.0) || !(std::fabs(gm) < 1.0))
+      throw UsageError("--g1 and --gm must lie strictly between -1 and 1");
+    const PhaseKind kind = phase == "cs" ? PhaseKind::CornetteShanks : PhaseKind::HenyeyGreenstein;
+    return PhasePair{{kind, static_cast<float>(g1)}, {kind, static_cast<float>(gm)}};
+  }
+  if (phase == "jd") {
+    const double d = args["droplet-um"].as<double>();
+    if (!(d >= defaults::kDropletDiameterMinUm && d <= defaults::kDropletDiameterMaxUm))
+      throw UsageError("--droplet-um must lie in [5, 50] (the range of the Jendersie-d'Eon fit)");
+    const Phase jd{PhaseKind::JendersieDeon, static_cast<float>(d)};
+    return PhasePair{jd, jd};
+  }
+  if (phase == "iso") return PhasePair{{PhaseKind::Isotropic, 0.0f}, {PhaseKind::Isotropic, 0.0f}};
+  throw UsageError("--phase: expected cs, hg, jd or iso, got '" + phase + "'");
 }
 
 }  // namespace cloudlut::cli

@@ -1,14 +1,19 @@
 #pragma once
 // Option parsing shared by the verbs: cxxopts errors become UsageError, and the value
-// formats every verb accepts (dimension lists, integer ranges) are parsed in one place.
+// formats every verb accepts (dimension lists, integer ranges, vectors, the phase functions)
+// are parsed in one place.
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <cxxopts.hpp>
+#include <glm/vec3.hpp>
 
 #include <tbb/global_control.h>
+
+#include "core/Phase.h"
 
 namespace cloudlut::cli {
 
@@ -27,5 +32,26 @@ std::unique_ptr<tbb::global_control> limitThreads(int threads);
 
 // The value of an option that must be positive.
 double requirePositive(double value, const std::string& option);
+
+// A default value as an option's text: "0.9", "183.8", "10" (six significant digits).
+std::string defaultText(double value);
+
+// "x,y,z" → three finite numbers (non-negative when `colour`); UsageError naming the option.
+glm::vec3 parseVec3Option(const std::string& text, const std::string& option, bool colour);
+
+// The phase-function options of every verb that takes them: --phase cs (Cornette–Shanks), hg
+// (Henyey–Greenstein), jd (Jendersie–d'Eon) or iso; --g1 and --gm, the g of sunlight's first
+// scattering and of every later one (cs, hg; in (−1, 1)); --droplet-um, the droplet diameter of
+// jd (one phase for every order; [5, 50] µm, the fit's range). Defaults from core/Defaults.h.
+// `defaultFromLuts`: --phase has no default (the verb takes the LUT set's phase functions, else
+// the defaults); otherwise it defaults to cs.
+void addPhaseOptions(cxxopts::Options& options, bool defaultFromLuts);
+
+struct PhasePair {
+  Phase first, later;  // sunlight's first scattering, every later one
+};
+// The phase functions the options name; nothing when --phase was not given and has no default.
+// UsageError naming the option for an unknown kind or a value out of range.
+std::optional<PhasePair> parsePhaseOptions(const cxxopts::ParseResult& args);
 
 }  // namespace cloudlut::cli

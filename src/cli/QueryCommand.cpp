@@ -10,9 +10,10 @@
 
 #include "cli/Command.h"
 #include "cli/Options.h"
-#include "cli/QueryCsv.h"
+#include "io/QueryCsv.h"
+#include "core/Defaults.h"
 #include "core/Errors.h"
-#include "core/Glsl.h"
+#include "core/Phase.h"
 #include "core/TableLookup.h"
 #include "io/LutIo.h"
 
@@ -22,9 +23,7 @@ namespace {
 // The phase function a scattering table was baked with for sunlight's first scattering,
 // as recorded in its parameters: {"first_phase": {"kind": K, "param": P}}.
 float firstScatteringPhase(const Table4D& single, float mu) {
-  const auto& p = single.parameters();
-  const auto phase = p.value("first_phase", nlohmann::json::object());
-  return glsl::phaseFunction(phase.value("kind", 2), mu, phase.value("param", 0.9f));
+  return phaseValue(recordedPhase(single.parameters(), "first_phase", defaults::kFirstPhase), mu);
 }
 
 std::string formatValue(float v) {
@@ -46,7 +45,7 @@ int runQuery(int argc, char** argv) {
   if (!args.count("dir")) throw UsageError("missing DIR (the LUT directory)");
   if (!args.count("csv")) throw UsageError("missing --csv IN");
 
-  const QueryCsv csv = readQueryCsv(args["csv"].as<std::string>());
+  const io::QueryCsv csv = io::readQueryCsv(args["csv"].as<std::string>());
   const io::LutSet set = io::readLutSet(args["dir"].as<std::string>());
   const auto find = [&](const char* name) -> const Table4D* {
     const auto it = set.tables.find(name);
@@ -58,7 +57,7 @@ int runQuery(int argc, char** argv) {
 
   std::ostringstream out;
   out << csv.header << ",optical_depth,transmittance,optical_radius,single,multiple\n";
-  for (const QueryRow& row : csv.rows) {
+  for (const io::QueryRow& row : csv.rows) {
     if (glm::dot(row.S, row.v) >= 0.0f)
       throw FileError(args["csv"].as<std::string>(), "row '" + row.text + "': v must point into the sphere (dot(S, v) < 0)");
     out << row.text;

@@ -9,7 +9,7 @@
 
 #include "cli/Command.h"
 #include "cli/Options.h"
-#include "cli/QueryCsv.h"
+#include "io/QueryCsv.h"
 #include "cli/TtyProgress.h"
 #include "core/Defaults.h"
 #include "core/Errors.h"
@@ -43,14 +43,11 @@ int runReference(int argc, char** argv) {
     ("paths", "paths per row", cxxopts::value<long long>()->default_value("100000"))
     ("seed", "random seed", cxxopts::value<unsigned long long>()->default_value("1"))
     ("threads", "worker threads (0 = all cores)", cxxopts::value<int>()->default_value("0"))
-    ("phase", "phase functions: cs (Cornette-Shanks), hg (Henyey-Greenstein), jd (Jendersie-d'Eon), iso",
-     cxxopts::value<std::string>()->default_value("cs"))
-    ("g1", "g of sunlight's first scattering (cs, hg)", cxxopts::value<double>()->default_value("0.9"))
-    ("gm", "g of every later scattering (cs, hg)", cxxopts::value<double>()->default_value("0.7"))
-    ("droplet-um", "droplet diameter in um (jd)", cxxopts::value<double>()->default_value("10"))
-    ("extinction", "extinction coefficient beta, 1/m", cxxopts::value<double>()->default_value("0.07"))
-    ("radius", "particle radius R, m", cxxopts::value<double>()->default_value("183.8"))
+    ("extinction", "extinction coefficient beta, 1/m",
+     cxxopts::value<double>()->default_value(defaultText(defaults::kExtinctionPerMetre)))
+    ("radius", "particle radius R, m", cxxopts::value<double>()->default_value(defaultText(defaults::kParticleRadiusMetres)))
     ("quiet", "no progress bar");
+  addPhaseOptions(options, false);
   options.parse_positional({"target"});
   options.positional_help("sphere");
   cxxopts::ParseResult args;
@@ -67,29 +64,15 @@ int runReference(int argc, char** argv) {
   reference::SphereMcSettings st;
   st.paths = paths;
   st.seed = args["seed"].as<unsigned long long>();
-  const std::string phase = args["phase"].as<std::string>();
-  const double g1 = args["g1"].as<double>(), gm = args["gm"].as<double>();
-  if (phase == "cs" || phase == "hg") {
-    if (!(g1 > -1.0 && g1 < 1.0) || !(gm > -1.0 && gm < 1.0))
-      throw UsageError("--g1 and --gm must lie in (-1, 1)");
-    const int kind = phase == "cs" ? 2 : 1;
-    st.first = {kind, static_cast<float>(g1)};
-    st.later = {kind, static_cast<float>(gm)};
-  } else if (phase == "jd") {
-    const double d = args["droplet-um"].as<double>();
-    if (!(d >= 5.0 && d <= 50.0)) throw UsageError("--droplet-um must lie in [5, 50] (the fit's range)");
-    st.first = st.later = {3, static_cast<float>(d)};
-  } else if (phase == "iso") {
-    st.first = st.later = {0, 0.0f};
-  } else {
-    throw UsageError("--phase must be cs, hg, jd or iso");
-  }
+  const PhasePair phases = parsePhaseOptions(args).value();  // --phase has a default
+  st.first = phases.first;
+  st.later = phases.later;
   const auto threads = limitThreads(args["threads"].as<int>());
 
-  const QueryCsv csv = readQueryCsv(args["csv"].as<std::string>());
+  const io::QueryCsv csv = io::readQueryCsv(args["csv"].as<std::string>());
   std::vector<reference::SphereMcQuery> queries;
   queries.reserve(csv.rows.size());
-  for (const QueryRow& r : csv.rows) {
+  for (const io::QueryRow& r : csv.rows) {
     if (glm::dot(r.S, r.v) >= 0.0f)
       throw FileError(args["csv"].as<std::string>(), "row '" + r.text + "': v must point into the sphere (v·S < 0)");
     queries.push_back({glm::dvec3(r.S), glm::dvec3(r.v), glm::dvec3(r.l),

@@ -6,9 +6,10 @@
 
 #include "cli/Command.h"
 #include "cli/Options.h"
-#include "cli/SceneCli.h"
+#include "cli/SceneOptions.h"
 #include "cli/TtyProgress.h"
 #include "core/Errors.h"
+#include "reference/ReferenceImage.h"
 #include "render/Renderer.h"
 
 namespace cloudlut::cli {
@@ -55,14 +56,14 @@ int runReferenceScene(int argc, char** argv) {
   const int threadCount = args["threads"].as<int>();
   if (threadCount < 0) throw UsageError("--threads must be 0 (all cores) or positive");
   const auto threads = limitThreads(threadCount);
-  const MediumSpec medium = parseMedium(args);
+  const Medium medium = parseMedium(args);
   const scene::ViewSettings overrides = parseViewOverrides(args);
   const scene::Scene scene = scene::readScene(args["particles"].as<std::string>());
   const scene::View view = scene::resolveView(scene, overrides);
 
   const bool quiet = args.count("quiet") > 0;
-  ReferenceSceneStats stats;
-  const io::ExrImage image = renderReferenceScene(scene.particles, view, medium, st, static_cast<int>(width),
+  reference::ReferenceSceneStats stats;
+  const io::ExrImage image = reference::renderReferenceScene(scene.particles, view, medium, st, static_cast<int>(width),
                                                   static_cast<int>(height), makeTtyProgress(quiet), &stats);
   finishTtyProgress();
   io::writeExrImage(image, out);

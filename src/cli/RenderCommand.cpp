@@ -14,7 +14,7 @@
 
 #include "cli/Command.h"
 #include "cli/Options.h"
-#include "cli/SceneCli.h"
+#include "cli/SceneOptions.h"
 #include "core/Errors.h"
 #include "io/LutIo.h"
 #include "render/GlContext.h"
@@ -66,8 +66,8 @@ int runRender(int argc, char** argv) {
     ("exposure", "PNG tone mapping: 1 - exp(-exposure * radiance)", cxxopts::value<double>()->default_value("5"))
     ("terms", "lighting terms: single, multiple, ambient, all (comma-separated)", cxxopts::value<std::string>()->default_value("all"))
     ("quiet", "print nothing on success");
-  addViewOptions(options);      // camera and light: cli/SceneCli.h
-  addRayMarchOptions(options);  // --method raymarch: cli/SceneCli.h
+  addViewOptions(options);      // camera and light: cli/SceneOptions.h
+  addRayMarchOptions(options);  // --method raymarch: cli/SceneOptions.h
   cxxopts::ParseResult args;
   if (!parseOptions(options, argc, argv, args)) return kExitOk;
   if (wantsRayMarch(args)) return runRayMarchRender(args);

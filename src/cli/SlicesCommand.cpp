@@ -5,7 +5,7 @@
 #include <string>
 
 #include "cli/Command.h"
-#include "cli/ContactSheet.h"
+#include "io/ContactSheet.h"
 #include "cli/Options.h"
 #include "core/Errors.h"
 #include "io/LutIo.h"
@@ -31,7 +31,7 @@ int runSlices(int argc, char** argv) {
   const std::filesystem::path path = args["path"].as<std::string>(), out = args["out"].as<std::string>();
   if (out.extension() != ".png") throw UsageError("--out must name a .png file");
 
-  ContactSheetOptions opts;
+  io::ContactSheetOptions opts;
   opts.channel = args["channel"].as<int>();
   if (args.count("range")) {
     const std::string r = args["range"].as<std::string>();
@@ -56,7 +56,7 @@ int runSlices(int argc, char** argv) {
     table = io::readLut(path).table;
     title = table.name();
   }
-  const RgbImage sheet = drawContactSheet(table, title, opts);
+  const io::RgbImage sheet = io::drawContactSheet(table, title, opts);
   io::writePng(out, sheet.width, sheet.height, sheet.rgb);
   std::printf("wrote %s (%dx%d)\n", out.c_str(), sheet.width, sheet.height);
   return kExitOk;

@@ -1,6 +1,7 @@
 #include "core/Table4D.h"
 #include "core/Errors.h"
 #include "core/Glsl.h"
+#include "cloudlut_quadrilinear.h"
 
 #include <unistd.h>
 
@@ -36,29 +37,9 @@ std::size_t Table4D::nodeCount() const {
 }
 
 void Table4D::sample(const std::array<float, 4>& x, float* out) const {
-  int i[4];
-  float f[4];
-  for (int k = 0; k < 4; ++k) {
-    const int n = axes_[k].size;
-    const float p = std::clamp(x[k], 0.0f, 1.0f) * static_cast<float>(n - 1);
-    i[k] = std::min(static_cast<int>(p), std::max(n - 2, 0));
-    f[k] = n > 1 ? p - static_cast<float>(i[k]) : 0.0f;
-  }
-  const int C = channelCount();
-  for (int c = 0; c < C; ++c) out[c] = 0.0f;
-  for (int corner = 0; corner < 16; ++corner) {
-    float w = 1.0f;
-    int j[4];
-    for (int k = 0; k < 4; ++k) {
-      const bool hi = (corner >> k) & 1;
-      if (hi && axes_[k].size < 2) { w = 0.0f; break; }
-      j[k] = i[k] + (hi ? 1 : 0);
-      w *= hi ? f[k] : 1.0f - f[k];
-    }
-    if (w == 0.0f) continue;
-    const std::size_t node = index(j[0], j[1], j[2], j[3]);
-    for (int c = 0; c < C; ++c) out[c] += w * at(node, c);
-  }
+  const std::uint32_t dims[4] = {static_cast<std::uint32_t>(axes_[0].size), static_cast<std::uint32_t>(axes_[1].size),
+                                 static_cast<std::uint32_t>(axes_[2].size), static_cast<std::uint32_t>(axes_[3].size)};
+  cloudlut_reader::sampleQuadrilinear(data_.data(), dims, channels_.size(), x.data(), out);
 }
 
 std::uint64_t Table4D::bytesFor(const std::array<int, 4>& dims, int channels) {

@@ -64,8 +64,8 @@ class Table4D {
   const nlohmann::json& parameters() const { return parameters_; }
 
   // Quadrilinear interpolation at axis fractions x ∈ [0, 1]⁴ (clamped), one value per channel
-  // written to out. This is what the renderer's hardware trilinear filter plus its manual
-  // interpolation of axis 3 compute.
+  // written to out (sampleQuadrilinear, lut_formats/cloudlut_quadrilinear.h). This is what the
+  // renderer's hardware trilinear filter plus its manual interpolation of axis 3 compute.
   void sample(const std::array<float, 4>& x, float* out) const;
 
   // Bytes a table of these dimensions and channels occupies in memory as float.

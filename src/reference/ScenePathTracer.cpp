@@ -132,8 +132,8 @@ glm::dvec3 rotateAround(const glm::dvec3& axis, double mu, double phi) {
   return glm::normalize(mu * axis + s * (std::cos(phi) * x + std::sin(phi) * y));
 }
 
-double phaseValue(const McPhase& p, double mu) {
-  return static_cast<double>(glsl::phaseFunction(p.kind, static_cast<float>(mu), p.param));
+double phaseAt(const Phase& p, double mu) {
+  return static_cast<double>(cloudlut::phaseValue(p, static_cast<float>(mu)));
 }
 
 struct PathSample {
@@ -158,7 +158,7 @@ PathSample tracePath(const SceneMedium& m, const SceneLight& light, const SceneP
     out.vertices = order;
     // Next-event estimation: sunlight's first scattering at this vertex.
     const RaySpans toSun(m, origin, l);
-    const double sun = phaseValue(st.first, glm::dot(dir, l)) * transmittance(m, toSun, rng, active);
+    const double sun = phaseAt(st.first, glm::dot(dir, l)) * transmittance(m, toSun, rng, active);
     (order == 1 ? out.single : out.multiple) += sun;
     if (order >= maxOrder) break;
     // Continue along a direction sampled from the later phase function.

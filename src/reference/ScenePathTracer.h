@@ -39,6 +39,8 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/Defaults.h"
+#include "core/Phase.h"
 #include "core/Progress.h"
 #include "core/ReferenceParticle.h"
 #include "reference/SphereMonteCarlo.h"
@@ -54,12 +56,12 @@ struct SceneParticle {
 struct SceneMedium {
   std::vector<SceneParticle> particles;
   const ReferenceParticle* model = nullptr;  // ρ̂; must outlive the medium's use
-  double unitOpticalRadius = 0.07 * 183.8;   // β·R
+  double unitOpticalRadius = defaults::kUnitOpticalRadius;  // β·R
 };
 
 struct ScenePtSettings {
-  McPhase first{2, 0.9f};    // sunlight's first scattering (NEE)
-  McPhase later{2, 0.7f};    // every later scattering (path continuation)
+  Phase first = defaults::kFirstPhase;  // sunlight's first scattering (NEE)
+  Phase later = defaults::kLaterPhase;  // every later scattering (path continuation)
   int samplesPerPixel = 64;
   std::uint64_t seed = 1;
   int maxOrder = 0;          // > 0: stop after this many scattering events; 0 = no limit

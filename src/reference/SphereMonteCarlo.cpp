@@ -22,8 +22,8 @@ std::uint64_t mix64(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
-double phaseValue(const McPhase& p, double mu) {
-  return static_cast<double>(glsl::phaseFunction(p.kind, static_cast<float>(mu), p.param));
+double phaseAt(const Phase& p, double mu) {
+  return static_cast<double>(cloudlut::phaseValue(p, static_cast<float>(mu)));
 }
 
 double sampleHg(double g, double u) {
@@ -97,12 +97,12 @@ void tracePath(const SphereMcQuery& q, const glm::dvec3& S, const glm::dvec3& v,
     if (!(w > 0.0)) break;
     ++vertices;
     // Next-event estimation: sunlight scattered for the first time here, toward -d.
-    add(k, misA * w * phaseValue(st.first, glm::dot(l, d)) * std::exp(-sigma * distanceToBoundary(x, l)));
+    add(k, misA * w * phaseAt(st.first, glm::dot(l, d)) * std::exp(-sigma * distanceToBoundary(x, l)));
     // Technique B for order k + 1.
     if (k < lastVertex) {
       const glm::dvec3 dB = rotateAbout(l, samplePhaseCosine(st.first, rng), rng.next());
-      const double pmB = phaseValue(st.later, glm::dot(d, dB));
-      const double p1B = phaseValue(st.first, glm::dot(l, dB));
+      const double pmB = phaseAt(st.later, glm::dot(d, dB));
+      const double p1B = phaseAt(st.first, glm::dot(l, dB));
       double wB = w;
       const glm::dvec3 xB = fly(x, dB, distanceToBoundary(x, dB), wB);
       if (wB > 0.0 && pmB + p1B > 0.0)
@@ -117,8 +117,8 @@ void tracePath(const SphereMcQuery& q, const glm::dvec3& S, const glm::dvec3& v,
     // Technique A: continue backward; the light arriving here came from direction d' with
     // cos(d, d') drawn exactly from the later phase function.
     const glm::dvec3 dn = rotateAbout(d, samplePhaseCosine(st.later, rng), rng.next());
-    const double pmA = phaseValue(st.later, glm::dot(d, dn));
-    const double p1A = phaseValue(st.first, glm::dot(l, dn));
+    const double pmA = phaseAt(st.later, glm::dot(d, dn));
+    const double p1A = phaseAt(st.first, glm::dot(l, dn));
     misA = pmA + p1A > 0.0 ? pmA / (pmA + p1A) : 1.0;
     d = dn;
   }
@@ -142,16 +142,16 @@ std::uint64_t McRng::nextBits() {
   return mix64(state_);
 }
 
-double samplePhaseCosine(const McPhase& phase, McRng& rng) {
+double samplePhaseCosine(const Phase& phase, McRng& rng) {
   switch (phase.kind) {
-    case 1: return sampleHg(phase.param, rng.next());
-    case 2:
+    case PhaseKind::HenyeyGreenstein: return sampleHg(phase.param, rng.next());
+    case PhaseKind::CornetteShanks:
       // Cornette–Shanks = HG · 3(1 + mu²)/(2(2 + g²)): accept an HG sample with (1 + mu²)/2.
       for (;;) {
         const double mu = sampleHg(phase.param, rng.next());
         if (2.0 * rng.next() < 1.0 + mu * mu) return mu;
       }
-    case 3: {
+    case PhaseKind::JendersieDeon: {
       const glm::vec4 p = glsl::jendersieDeonParameters(phase.param);
       if (rng.next() >= static_cast<double>(p.w)) return sampleHg(static_cast<double>(p.x), rng.next());
       // Draine lobe = HG(g_D) · (1 + α mu²) / norm: accept with (1 + α mu²) / (1 + α).
@@ -161,8 +161,9 @@ double samplePhaseCosine(const McPhase& phase, McRng& rng) {
         if (rng.next() * (1.0 + alpha) < 1.0 + alpha * mu * mu) return mu;
       }
     }
-    default: return 1.0 - 2.0 * rng.next();
+    case PhaseKind::Isotropic: break;
   }
+  return 1.0 - 2.0 * rng.next();
 }
 
 double unscatteredShare(double sigma) {
@@ -218,7 +219,7 @@ std::vector<SphereMcEstimate> estimateSphereRadiance(const std::vector<SphereMcQ
   return out;
 }
 
-PhotonShares photonTraceSphere(double sigma, const McPhase& first, const McPhase& later,
+PhotonShares photonTraceSphere(double sigma, const Phase& first, const Phase& later,
                                long long photons, std::uint64_t seed, int maxOrder) {
   if (photons < 1 || maxOrder < 1) throw std::invalid_argument("photonTraceSphere: bad counts");
   const glm::dvec3 l(0, 0, 1);

@@ -1,5 +1,6 @@
 #pragma once
-// Monte Carlo ground truth for the homogeneous unit sphere (DESIGN.md conventions): the
+// Monte Carlo ground truth for the homogeneous unit sphere (particle space as in
+// docs/ENGINE_GUIDE.md §2): the
 // independent reference the scattering tables are judged against. It shares nothing with the
 // baker beyond the geometry and phase functions of core/Glsl.h.
 //
@@ -26,21 +27,15 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/Defaults.h"
+#include "core/Phase.h"
 #include "core/Progress.h"
 
 namespace cloudlut::reference {
 
-// Phase function selection as in phaseFunction() of cloudlut_phase.glsl: kind 0 isotropic,
-// 1 Henyey–Greenstein (param = g), 2 Cornette–Shanks (param = g), 3 Jendersie–d'Eon
-// (param = droplet diameter in µm).
-struct McPhase {
-  int kind = 2;
-  float param = 0.9f;
-};
-
 struct SphereMcSettings {
-  McPhase first{2, 0.9f};   // sunlight's first scattering
-  McPhase later{2, 0.7f};   // every later scattering
+  Phase first = defaults::kFirstPhase;  // sunlight's first scattering
+  Phase later = defaults::kLaterPhase;  // every later scattering
   long long paths = 100000; // per query
   std::uint64_t seed = 1;
   int splitOrder = 18;      // multipleN holds orders 2 … splitOrder
@@ -83,7 +78,7 @@ class McRng {
 
 // Exact sample of the cosine of the scattering angle for a phase function (rejection sampling
 // from Henyey–Greenstein lobes); exposed for tests.
-double samplePhaseCosine(const McPhase& phase, McRng& rng);
+double samplePhaseCosine(const Phase& phase, McRng& rng);
 
 // Shares of the incident power (π for unit irradiance) leaving the sphere, by order, from
 // forward (analog) photon tracing: photons enter uniformly over the cross-section.
@@ -94,7 +89,7 @@ struct PhotonShares {
   double total = 0;                // sum of everything above (1 for a non-absorbing sphere)
   double standardError = 0;        // standard error of any single share (≤ 0.5/√photons)
 };
-PhotonShares photonTraceSphere(double sigma, const McPhase& first, const McPhase& later,
+PhotonShares photonTraceSphere(double sigma, const Phase& first, const Phase& later,
                                long long photons, std::uint64_t seed, int maxOrder = 18);
 
 // The same shares from the backward estimator above, integrated over the sphere surface

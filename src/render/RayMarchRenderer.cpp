@@ -118,9 +118,9 @@ struct RayMarchRenderer::Impl {
     uniforms.set("uShadowSteps", s.shadowSteps);
     uniforms.set("uOctaves", s.octaves);
     uniforms.set("uOctaveABC", glm::vec3(s.a, s.b, s.c));
-    uniforms.set("uFirstKind", s.first.kind);
+    uniforms.set("uFirstKind", glslKind(s.first.kind));
     uniforms.set("uFirstParam", s.first.param);
-    uniforms.set("uLaterKind", s.later.kind);
+    uniforms.set("uLaterKind", glslKind(s.later.kind));
     uniforms.set("uLaterParam", s.later.param);
     uniforms.set("uSigma", s.unitOpticalRadius);
     uniforms.set("uModel", modelKind);

@@ -27,17 +27,14 @@
 #include <memory>
 #include <vector>
 
+#include "core/Defaults.h"
+#include "core/Phase.h"
 #include "core/ReferenceParticle.h"
 #include "render/GlContext.h"
 #include "render/RenderTypes.h"
 #include "scene/Scene.h"
 
 namespace cloudlut::render {
-
-struct RayMarchPhase {
-  int kind = 2;        // as phaseFunction(): 0 iso, 1 HG, 2 CS, 3 JD
-  float param = 0.9f;  // g, or the droplet diameter (µm) for JD
-};
 
 struct RayMarchSettings {
   int width = 640;
@@ -49,9 +46,9 @@ struct RayMarchSettings {
   int shadowSteps = 6;             // steps of each shadow ray (1 … 256)
   int octaves = 8;                 // Wrenninge octaves (1 … 16; 1 = single scattering only)
   float a = 0.5f, b = 0.5f, c = 0.5f;  // octave attenuation of extinction, contribution, anisotropy
-  RayMarchPhase first{2, 0.9f};    // P1
-  RayMarchPhase later{2, 0.7f};    // PM
-  float unitOpticalRadius = 0.07f * 183.8f;  // β·R
+  Phase first = defaults::kFirstPhase;  // P1
+  Phase later = defaults::kLaterPhase;  // PM
+  float unitOpticalRadius = static_cast<float>(defaults::kUnitOpticalRadius);  // β·R
   float minTransmittance = 1e-4f;
 };
 

@@ -3,7 +3,7 @@
 // fragment shader intersects the view ray with the ellipsoid and shades it from the tables;
 // particles are blended back to front, or composited exactly per pixel (volume blending).
 //
-// Shading of one particle along one ray (particle space, unit-sphere units; docs/ENGINE_GUIDE.md):
+// Shading of one particle along one ray (particle space, unit-sphere units; docs/ENGINE_GUIDE.md §2):
 //   S, v   entry point and unit direction of the ray mapped into the particle's unit sphere;
 //   l      the world sun direction mapped by the particle's inverse transform, renormalised;
 //   τ      = ρ · σ · L · T̄, L = 2 cos θv the chord, T̄ the optical-depth table's mean density,

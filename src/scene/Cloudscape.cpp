@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "core/Defaults.h"
 #include "core/Errors.h"
 #include "scene/CloudscapeGrid.h"
 #include "scene/EmbeddedPresets.h"
@@ -156,7 +157,9 @@ glm::vec2 cloudscapeDensityRange(const CloudType& c, const QualityPreset& q) {
   // weights below 1/16 are faded-out particles and not counted.
   const float minR = c.cellSize * c.particleSize.x * 0.55f * 0.6f * 0.5f;
   const float maxR = c.cellSize * std::exp2(static_cast<float>(q.rings - 1)) * c.particleSize.y;
-  return {c.density * 0.5f * minR / grid::CG_REFERENCE_RADIUS / 16.0f, c.density * maxR / grid::CG_REFERENCE_RADIUS};
+  // R as the generator shader uses it (CG_REFERENCE_RADIUS, equal to the default: tests/test_defaults.cpp)
+  const float R = static_cast<float>(defaults::kParticleRadiusMetres);
+  return {c.density * 0.5f * minR / R / 16.0f, c.density * maxR / R};
 }
 
 Frustum cameraFrustum(const Camera& camera, int width, int height) {

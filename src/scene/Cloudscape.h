@@ -12,6 +12,7 @@
 #include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/Defaults.h"
 #include "scene/Scene.h"
 
 namespace cloudlut::scene {
@@ -39,7 +40,7 @@ struct CloudType {
   glm::vec2 particleSize{0.75f, 1.15f};  // particle radius / cell size, min and max
   float verticalAspect = 0.8f;   // vertical / horizontal radius (at least 0.6 × layer spacing)
   float noiseScale = 5000.0f;    // m, feature size of the coverage noise
-  float cellSize = 183.8f;       // m, ring-0 cell
+  float cellSize = static_cast<float>(defaults::kCloudscapeCellMetres);  // m, ring-0 cell
   float jitter = 0.8f;           // random displacement, fraction of a cell
   float visibility = 40000.0f;   // m, far plane: no particle beyond it
   float fadeFraction = 0.25f;    // share of a ring over which it cross-fades with the next

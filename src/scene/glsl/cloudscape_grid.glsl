@@ -1,6 +1,6 @@
 // cloudscape_grid.glsl — the camera-centred clipmap particle grid (seed §5.2), one definition for
-// the GPU generator (cloudscape_generate.comp.glsl) and the CPU reference (render/Cloudscape.cpp,
-// compiled as C++ through GLM by render/CloudscapeGrid.h). Same GLSL/C++ subset as
+// the GPU generator (cloudscape_generate.comp.glsl) and the CPU reference (scene/Cloudscape.cpp,
+// compiled as C++ through GLM by scene/CloudscapeGrid.h). Same GLSL/C++ subset as
 // lut_formats/glsl: float literals with `f`, no in/out, every function prefixed by CLOUDLUT_FN.
 //
 // Grid: `rings` square rings of `ringDim`² cells around the camera; ring r's cells are
@@ -21,7 +21,8 @@
 #define CLOUDLUT_FN
 #endif
 
-// Radius of the reference particle of the tables (DESIGN.md: R = 183.8 m): a particle of world
+// Radius of the reference particle of the tables (R = 183.8 m, core/Defaults.h
+// kParticleRadiusMetres; tests/test_defaults.cpp checks they are equal): a particle of world
 // radius r is given density ρ·r/R so that it is as thick as a reference particle of that size.
 const float CG_REFERENCE_RADIUS = 183.8f;
 

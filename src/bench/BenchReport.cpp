@@ -1,4 +1,4 @@
-#include "cli/BenchReport.h"
+#include "bench/BenchReport.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -7,7 +7,7 @@
 
 #include "io/LutIo.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::bench {
 
 void BenchReport::add(BenchRow row) {
   rows_.push_back(std::move(row));
@@ -53,4 +53,4 @@ ErrorStats summarizeErrors(std::vector<double> errors) {
   return s;
 }
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::bench

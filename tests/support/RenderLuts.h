@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/OpticalDepthBaker.h"
+#include "core/Defaults.h"
 #include "core/Glsl.h"
 #include "core/ReferenceParticle.h"
 #include "core/Table4D.h"
@@ -44,7 +45,9 @@ Table4D syntheticScatteringTable(const std::string& name, const std::array<int, 
           t.at(t.index(i0, i1, i2, i3), 0) = single ? glsl::singleScatteringToTable(j) : j;
         }
   // built first, then moved in: clang 14 leaks the old value of `json& = {init-list}`
-  nlohmann::json parameters = {{"extinction_per_m", 0.07}, {"radius_m", 183.8}, {"synthetic", true}};
+  nlohmann::json parameters = {{"extinction_per_m", defaults::kExtinctionPerMetre},
+                               {"radius_m", defaults::kParticleRadiusMetres},
+                               {"synthetic", true}};
   t.parameters() = std::move(parameters);
   return t;
 }

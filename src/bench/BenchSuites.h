@@ -3,10 +3,10 @@
 // reference and appends rows to the report.
 #include <filesystem>
 
-#include "cli/BenchReport.h"
+#include "bench/BenchReport.h"
 #include "core/Progress.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::bench {
 
 struct BenchOptions {
   bool quick = false;  // reduced resolutions, for a fast look
@@ -24,11 +24,11 @@ void benchOpticalDepth(BenchReport& report, const BenchOptions& options);
 void benchScattering(BenchReport& report, const BenchOptions& options, const std::filesystem::path& out);
 
 // Renderer II: cloudscapes per quality preset and blend mode, ms per stage (generation,
-// occlusion, shading + blending, upscale) and frame-to-frame stability (src/cli/RenderBench.cpp).
+// occlusion, shading + blending, upscale) and frame-to-frame stability (RenderBench.cpp).
 void benchRender(BenchReport& report, const BenchOptions& options);
 
 // Ground truth (GroundTruthBench.cpp): every rendering method on data/bench_scenes, time against
 // error relative to the path-traced reference; references and LUTs cached under `out`.
 void benchGroundTruth(BenchReport& report, const BenchOptions& options, const std::filesystem::path& out);
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::bench

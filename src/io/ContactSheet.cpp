@@ -1,4 +1,4 @@
-#include "cli/ContactSheet.h"
+#include "io/ContactSheet.h"
 
 #include <algorithm>
 #include <array>
@@ -10,7 +10,7 @@
 
 #include "core/Errors.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::io {
 namespace {
 
 using Rgb = std::array<std::uint8_t, 3>;
@@ -127,4 +127,4 @@ RgbImage drawContactSheet(const Table4D& table, const std::string& title, const 
   return c.take();
 }
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::io

@@ -1,4 +1,4 @@
-#include "cli/QueryCsv.h"
+#include "io/QueryCsv.h"
 
 #include <charconv>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "core/Errors.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::io {
 
 namespace {
 
@@ -66,4 +66,4 @@ QueryCsv readQueryCsv(const std::filesystem::path& path) {
   return csv;
 }
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::io

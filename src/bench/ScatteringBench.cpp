@@ -32,12 +32,13 @@
 #include <tbb/global_control.h>
 
 #include "bake/ScatteringBaker.h"
-#include "cli/BenchSuites.h"
+#include "bench/BenchSuites.h"
+#include "core/Defaults.h"
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
 #include "reference/SphereMonteCarlo.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::bench {
 namespace {
 
 namespace fs = std::filesystem;
@@ -53,7 +54,7 @@ std::vector<Query> makeQueries(int perDensity) {
   std::mt19937_64 rng(777);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   std::vector<Query> q;
-  for (int s = -4; s <= 3; ++s)
+  for (int s = defaults::kDensitySlopeMin; s <= defaults::kDensitySlopeMax; ++s)
     for (int i = 0; i < perDensity; ++i) {
       const float z = 2.0f * u(rng) - 1.0f, phi = 6.2831853f * u(rng);
       const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
@@ -94,7 +95,7 @@ Reference monteCarlo(const std::vector<Query>& queries, long long paths, const f
   }
   std::vector<reference::SphereMcQuery> mc;
   for (const Query& q : queries)
-    mc.push_back({glm::dvec3(q.S), glm::dvec3(q.v), glm::dvec3(q.l), 0.07 * 183.8 * q.rho});
+    mc.push_back({glm::dvec3(q.S), glm::dvec3(q.v), glm::dvec3(q.l), defaults::kUnitOpticalRadius * q.rho});
   reference::SphereMcSettings settings;
   settings.paths = paths;
   settings.seed = 777;
@@ -124,7 +125,7 @@ ErrorStats relativeErrors(const Table4D& table, const std::vector<Query>& querie
   for (std::size_t i = 0; i < queries.size(); ++i) {
     const Query& q = queries[i];
     double value = lookupScattering(table, q.S, q.v, q.l, q.rho);
-    if (withPhase) value *= glsl::phaseCornetteShanks(glm::dot(q.v, q.l), 0.9f);
+    if (withPhase) value *= phaseValue(defaults::kFirstPhase, glm::dot(q.v, q.l));
     if (ref[i] > 1e-6) e.push_back(std::fabs(value - ref[i]) / ref[i]);
   }
   std::vector<double> sorted = e;
@@ -162,7 +163,7 @@ void benchScattering(BenchReport& report, const BenchOptions& options, const fs:
     bool speedPair = false;  // the paper/fast speed comparison (two density slices)
   };
   std::vector<Config> configs;
-  const std::array<int, 4> full{32, 64, 16, 8}, half{16, 32, 8, 8}, small{8, 16, 6, 8};
+  const std::array<int, 4> full = defaults::kScatteringDims, half{16, 32, 8, 8}, small{8, 16, 6, 8};
   if (options.quick) {
     configs = {{"fast", small, 18, cores}, {"fast", half, 18, cores}, {"fast", half, 0, cores}, {"paper", small, 18, cores}};
   } else {
@@ -230,4 +231,4 @@ void benchScattering(BenchReport& report, const BenchOptions& options, const fs:
   reportProgress(options.progress, "bench: scattering", 1.0);
 }
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::bench

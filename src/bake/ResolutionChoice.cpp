@@ -1,4 +1,4 @@
-#include "cli/SceneNeeds.h"
+#include "bake/ResolutionChoice.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,13 +12,14 @@
 
 #include "bake/OpticalDepthBaker.h"
 #include "bake/SingleScattering.h"
+#include "core/Defaults.h"
 #include "core/Errors.h"
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
 #include "scene/Cloudscape.h"
 #include "scene/Scene.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::bake {
 
 SceneNeeds readSceneNeeds(const std::string& fileOrPreset, const std::string& quality) {
   SceneNeeds needs;
@@ -71,21 +72,18 @@ OpticalDepthChoice chooseOpticalDepthResolution(const ReferenceParticle& particl
     r.S = glsl::sphericalPoint(phi, theta);
     const float thetaV = std::acos(std::sqrt(u(rng)));  // cosine-weighted: rays as a camera sees them
     r.v = glsl::frameDirection(glsl::tangentX(phi, theta), glsl::tangentY(phi), r.S, 6.2831853f * u(rng), thetaV);
-    r.exact = bake::integrateChord(particle, r.S, r.v, steps).meanDensity;
+    r.exact = integrateChord(particle, r.S, r.v, steps).meanDensity;
   }
   // Up to the default 64×32×64×32: its folded depth, 64·32 = 2048, is the largest 3D texture
   // side OpenGL implementations must support.
-  const std::array<std::array<int, 4>, 5> ladder{{{16, 8, 16, 8},
-                                                  {24, 12, 24, 12},
-                                                  {32, 16, 32, 16},
-                                                  {48, 24, 48, 24},
-                                                  {64, 32, 64, 32}}};
+  const std::array<std::array<int, 4>, 5> ladder{
+      {{16, 8, 16, 8}, {24, 12, 24, 12}, {32, 16, 32, 16}, {48, 24, 48, 24}, defaults::kOpticalDepthDims}};
   OpticalDepthChoice choice{ladder.back(), 0.0};
   for (const auto& dims : ladder) {
-    bake::OpticalDepthSettings s;
+    OpticalDepthSettings s;
     s.dims = dims;
     s.steps = steps;
-    const Table4D table = bake::bakeOpticalDepth(particle, s);
+    const Table4D table = bakeOpticalDepth(particle, s);
     std::vector<double> errors;
     for (const float rho : {needs.rhoMin, needs.rhoMax})
       for (const Ray& r : rays) {
@@ -103,7 +101,7 @@ OpticalDepthChoice chooseOpticalDepthResolution(const ReferenceParticle& particl
   return choice;
 }
 
-ScatteringChoice chooseScatteringResolution(const bake::ScatteringSettings& settings, double tolerance) {
+ScatteringChoice chooseScatteringResolution(const ScatteringSettings& settings, double tolerance) {
   std::mt19937_64 rng(4343);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const auto unit = [&] {
@@ -126,19 +124,19 @@ ScatteringChoice chooseScatteringResolution(const bake::ScatteringSettings& sett
     const double s = settings.sMin + (settings.sMax - settings.sMin) * u(rng);
     r.rhoBetween = std::exp2(s);
     r.rhoSlice = std::exp2(std::round(s));
-    r.exactBetween = bake::singleScatteringL1(r.S, r.v, r.l, sigma1 * r.rhoBetween);
-    r.exactSlice = bake::singleScatteringL1(r.S, r.v, r.l, sigma1 * r.rhoSlice);
+    r.exactBetween = singleScatteringL1(r.S, r.v, r.l, sigma1 * r.rhoBetween);
+    r.exactSlice = singleScatteringL1(r.S, r.v, r.l, sigma1 * r.rhoSlice);
     meanBetween += r.exactBetween / static_cast<double>(rays.size());
     meanSlice += r.exactSlice / static_cast<double>(rays.size());
   }
   // One bake of a candidate's single table; the 95th percentile of its relative error at the
   // slice densities (first) and between them (second).
   const auto errorsOf = [&](const std::array<int, 4>& dims) {
-    bake::ScatteringSettings s = settings;
+    ScatteringSettings s = settings;
     s.dims = dims;
     s.single = true;
     s.multiple = false;
-    const bake::ScatteringResult r = bake::bakeScattering(s);
+    const ScatteringResult r = bakeScattering(s);
     const auto p95 = [&](bool between) {
       std::vector<double> errors;
       for (const Ray& ray : rays) {
@@ -174,4 +172,4 @@ ScatteringChoice chooseScatteringResolution(const bake::ScatteringSettings& sett
   return choice;
 }
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::bake

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace cloudlut::cli {
+namespace cloudlut::bench {
 
 struct BenchRow {
   std::string suite;       // "optical-depth", "scattering", ...
@@ -44,4 +44,4 @@ struct ErrorStats {
 };
 ErrorStats summarizeErrors(std::vector<double> errors);
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::bench

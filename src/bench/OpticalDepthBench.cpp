@@ -10,10 +10,10 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/OpticalDepthBaker.h"
-#include "cli/BenchSuites.h"
+#include "bench/BenchSuites.h"
 #include "core/Glsl.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::bench {
 namespace {
 
 constexpr int kReferenceSteps = 4096;
@@ -128,4 +128,4 @@ void benchOpticalDepth(BenchReport& report, const BenchOptions& options) {
   reportProgress(options.progress, "bench: optical depth", 1.0);
 }
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::bench

@@ -27,17 +27,19 @@
 
 #include "bake/OpticalDepthBaker.h"
 #include "bake/ScatteringBaker.h"
-#include "cli/BenchSuites.h"
-#include "cli/SceneCli.h"
+#include "bench/BenchSuites.h"
+#include "core/Medium.h"
 #include "core/Errors.h"
 #include "io/Fnv1a.h"
 #include "io/LutIo.h"
+#include "io/ManifestSchema.h"
+#include "reference/ReferenceImage.h"
 #include "reference/SceneCompare.h"
 #include "render/GlContext.h"
 #include "render/RayMarchRenderer.h"
 #include "render/Renderer.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::bench {
 namespace {
 
 namespace fs = std::filesystem;
@@ -74,12 +76,12 @@ std::string hex(std::uint64_t v) {
 
 // The LUT set the particle renderer uses: optical depth of the medium's model and scattering
 // tables baked at reduced resolution (converged multiple scattering); cached in `dir`.
-bool ensureLutSet(const fs::path& dir, const MediumSpec& medium, bool quick, std::string& note) {
+bool ensureLutSet(const fs::path& dir, const Medium& medium, bool quick, std::string& note) {
   if (fs::exists(dir / "manifest.json")) return true;
   try {
     fs::create_directories(dir);
     bake::OpticalDepthSettings od;
-    od.dims = quick ? std::array<int, 4>{32, 16, 32, 16} : std::array<int, 4>{64, 32, 64, 32};
+    od.dims = quick ? std::array<int, 4>{32, 16, 32, 16} : defaults::kOpticalDepthDims;
     const Table4D depth = bake::bakeOpticalDepth(ReferenceParticle(medium.model, medium.seed), od);
     bake::ScatteringSettings sc;
     sc.dims = {16, 32, 8, 8};  // reduced resolution: the default bake is slow on shared machines
@@ -87,15 +89,9 @@ bool ensureLutSet(const fs::path& dir, const MediumSpec& medium, bool quick, std
     const bake::ScatteringResult r = bake::bakeScattering(sc);
     if (!r.single || !r.multiple) throw std::runtime_error("the scattering baker returned no tables");
     nlohmann::json entries = nlohmann::json::object();
-    for (const Table4D* t : {&depth, &*r.single, &*r.multiple}) {
-      const std::string file = t->name() + ".bin";
-      io::writeBinaryLut(*t, io::SampleType::Float, dir / file);
-      nlohmann::json entry = io::describeTable(*t, io::SampleType::Float);
-      entry["files"] = {{"bin", file}};
-      entries[t->name()] = entry;
-    }
-    io::writeManifest(dir, {{"format", "cloudlut-lut-set"}, {"version", io::kFormatVersion}, {"generator", "cloudlut bench ground-truth"},
-                            {"tables", entries}});
+    for (const Table4D* t : {&depth, &*r.single, &*r.multiple})
+      entries[t->name()] = io::writeTableFiles(*t, io::SampleType::Float, dir, {.bin = true, .exr = false});
+    io::writeManifest(dir, io::makeManifest("cloudlut bench ground-truth", entries));
     return true;
   } catch (const std::exception& e) {
     note = std::string("LUT set not available: ") + e.what();
@@ -152,7 +148,7 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
   const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(std::max(threads, 1)));
 
-  MediumSpec medium;  // the defaults: noise model, seed 1, β = 0.07, R = 183.8, CS 0.9 / 0.7
+  const Medium medium;  // the defaults (core/Defaults.h): noise model, seed 1, β, R, CS g 0.9 then 0.7
   std::string lutNote;
   // one cache per format version: tables of an older version are not re-read (re-baked instead)
   const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + (options.quick ? "-quick" : ""));
@@ -197,11 +193,11 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
       cached = true;
       if (ref.attributes.count("cloudlutSeconds")) refSeconds = std::stod(ref.attributes["cloudlutSeconds"]);
     } else {
-      ReferenceSceneStats stats;
+      reference::ReferenceSceneStats stats;
       const ProgressFn progress = [&](std::string_view, double f) {
         reportProgress(options.progress, "ground-truth: " + name, f);
       };
-      ref = renderReferenceScene(scene.particles, view, medium, st, kWidth, kHeight, progress, &stats);
+      ref = reference::renderReferenceScene(scene.particles, view, medium, st, kWidth, kHeight, progress, &stats);
       refSeconds = stats.seconds;
       ref.attributes["cloudlutSeconds"] = std::to_string(stats.seconds);
       io::writeExrImage(ref, refPath);
@@ -273,8 +269,8 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
         rm.view = view;
         rm.steps = n;
         rm.adaptive = adaptive;
-        rm.first = {medium.first.kind, medium.first.param};
-        rm.later = {medium.later.kind, medium.later.param};
+        rm.first = medium.first;
+        rm.later = medium.later;
         rm.unitOpticalRadius = static_cast<float>(medium.unitOpticalRadius());
         render::Image img;
         const double t = best([&](render::RenderStats* s) { return marcher.render(scene.particles, rm, s); }, img);
@@ -291,4 +287,4 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
   }
 }
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::bench

@@ -1,7 +1,7 @@
 #pragma once
 // The geometry CSV read by `cloudlut query` and `cloudlut reference sphere`: a header line,
-// then rows `sx,sy,sz,vx,vy,vz,lx,ly,lz,density` in particle space (DESIGN.md conventions:
-// S on the unit sphere, v pointing into it, l toward the sun, density = the particle's
+// then rows `sx,sy,sz,vx,vy,vz,lx,ly,lz,density` in particle space (docs/ENGINE_GUIDE.md §2:
+// S on the unit sphere, v pointing into it, l toward the sun; density = the particle's
 // density scale ρ).
 #include <filesystem>
 #include <string>
@@ -9,7 +9,7 @@
 
 #include <glm/vec3.hpp>
 
-namespace cloudlut::cli {
+namespace cloudlut::io {
 
 struct QueryRow {
   glm::vec3 S;    // entry point, normalised on read
@@ -28,4 +28,4 @@ struct QueryCsv {
 // not a finite number, a zero vector or a non-positive density.
 QueryCsv readQueryCsv(const std::filesystem::path& path);
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::io

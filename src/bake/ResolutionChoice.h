@@ -1,14 +1,15 @@
 #pragma once
-// What a scene needs from the tables, for `cloudlut bake --for-scene`: the range of density
-// scales its particles use, and the optical-depth resolution whose interpolation error stays
-// below a tolerance.
+// The resolutions `cloudlut bake --for-scene` chooses: what a scene needs from the tables (the
+// range of density scales its particles use), the density slices that cover it, and the
+// smallest optical-depth and scattering tables whose interpolation errors stay within a
+// tolerance, each measured against the quantity integrated directly.
 #include <array>
 #include <string>
 
 #include "bake/ScatteringBaker.h"
 #include "core/ReferenceParticle.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::bake {
 
 struct SceneNeeds {
   std::string source;      // the scene file or cloudscape preset
@@ -57,6 +58,6 @@ struct ScatteringChoice {
 // log-uniform over the range — between slices the density interpolation dominates (p95 19%,
 // 5.4%, 2.2% at 1, 2, 4 per octave at 32×64×16). Falls back to the largest candidate that a GL
 // 3D texture holds (θv × slices ≤ 2048), with its error.
-ScatteringChoice chooseScatteringResolution(const bake::ScatteringSettings& settings, double tolerance);
+ScatteringChoice chooseScatteringResolution(const ScatteringSettings& settings, double tolerance);
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::bake

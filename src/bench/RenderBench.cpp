@@ -11,7 +11,8 @@
 
 #include "bake/OpticalDepthBaker.h"
 #include "bake/ScatteringBaker.h"
-#include "cli/BenchSuites.h"
+#include "bench/BenchSuites.h"
+#include "core/Defaults.h"
 #include "core/Glsl.h"
 #include "core/ReferenceParticle.h"
 #include "core/TableLookup.h"
@@ -19,7 +20,7 @@
 #include "render/GlContext.h"
 #include "render/Renderer.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::bench {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -43,9 +44,11 @@ Table4D syntheticScattering(const std::string& name, bool single) {
           t.at(t.index(i0, i1, i2, i3), 0) = single ? glsl::singleScatteringToTable(static_cast<float>(v)) : static_cast<float>(v);
         }
   // built first, then moved in: clang 14 leaks the old value of `json& = {init-list}`
-  nlohmann::json parameters = {{"extinction_per_m", 0.07}, {"radius_m", 183.8}, {"synthetic", true}};
+  nlohmann::json parameters = {{"extinction_per_m", defaults::kExtinctionPerMetre},
+                               {"radius_m", defaults::kParticleRadiusMetres},
+                               {"synthetic", true}};
   t.parameters() = std::move(parameters);
-  if (single) t.parameters()["first_phase"] = {{"kind", 2}, {"param", 0.9}};
+  if (single) t.parameters()["first_phase"] = phaseToJson(defaults::kFirstPhase);
   return t;
 }
 
@@ -161,4 +164,4 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
   reportProgress(options.progress, "bench: render", 1.0);
 }
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::bench

@@ -11,7 +11,7 @@
 
 #include "core/Table4D.h"
 
-namespace cloudlut::cli {
+namespace cloudlut::io {
 
 struct RgbImage {
   int width = 0, height = 0;
@@ -26,4 +26,4 @@ struct ContactSheetOptions {
 
 RgbImage drawContactSheet(const Table4D& table, const std::string& title, const ContactSheetOptions& options);
 
-}  // namespace cloudlut::cli
+}  // namespace cloudlut::io

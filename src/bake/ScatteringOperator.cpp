@@ -1,0 +1,110 @@
+#include "bake/ScatteringOperator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "bake/Quadrature.h"
+
+namespace cloudlut::bake {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
+void convolvePhase(const std::vector<float>& in, int inCols, const std::vector<float>& Mt, int cols, int nodes,
+                   std::vector<float>& out) {
+  // Rows in blocks of 4, so that each row of Mt is read once per block.
+  tbb::parallel_for(0, (nodes + 3) / 4, [&](int blk) {
+    const int s0 = blk * 4, s1 = std::min(nodes, s0 + 4);
+    for (int s = s0; s < s1; ++s) std::fill_n(&out[static_cast<std::size_t>(s) * cols], cols, 0.0f);
+    for (int j = 0; j < inCols; ++j) {
+      const float* m = &Mt[static_cast<std::size_t>(j) * cols];
+      for (int s = s0; s < s1; ++s) {
+        const float a = in[static_cast<std::size_t>(s) * inCols + j];
+        if (a == 0.0f) continue;
+        float* o = &out[static_cast<std::size_t>(s) * cols];
+        for (int i = 0; i < cols; ++i) o[i] += a * m[i];
+      }
+    }
+  });
+}
+
+TransportStencil::TransportStencil(const SphereField& field, double sigma, int points) : field_(&field) {
+  // Points per ray: the rule's panels may round the total up (at least 2 points each).
+  std::vector<double> probeS, probeW;
+  attenuatedRayRule(sigma, 2.0, points, probeS, probeW);
+  K_ = static_cast<int>(probeS.size());
+  const DirectionGrid& dirs = field.directions();
+  const int D = dirs.count(), nb = dirs.phiCount();
+  entries_.resize(field.size() * static_cast<std::size_t>(K_));
+  tbb::parallel_for(0, field.nodeCount(), [&](int s) {
+    std::vector<double> ss, ww;
+    const glm::dvec3 x = field.node(s);
+    for (int d = 0; d < D; ++d) {
+      const int ia = d / nb;
+      const glm::dvec3 w = dirs.direction(d);
+      attenuatedRayRule(sigma, distanceToSphere(x, -w), points, ss, ww);
+      const double wh = std::hypot(w.x, w.y);
+      Entry* e = &entries_[(static_cast<std::size_t>(s) * D + d) * K_];
+      for (int k = 0; k < K_; ++k) {
+        const FieldPoint p = field.locate(x - ss[k] * w, w, wh);
+        e[k].base = static_cast<std::uint32_t>(p.offset + static_cast<std::size_t>(ia) * nb);
+        for (int c = 0; c < 4; ++c) {
+          e[k].wr[c] = static_cast<float>(ww[k]) * p.wr[c];
+          e[k].wt[c] = p.wt[c];
+        }
+        e[k].fb = p.fb;
+      }
+    }
+  });
+}
+
+void TransportStencil::apply(const std::vector<float>& in, std::vector<float>& out) const {
+  const int D = field_->directionCount();
+  const std::size_t strideR = field_->radialStride(), strideT = field_->zenithStride();
+  tbb::parallel_for(0, field_->nodeCount(), [&](int s) {
+    for (int d = 0; d < D; ++d) {
+      const std::size_t cell = static_cast<std::size_t>(s) * D + d;
+      const Entry* e = &entries_[cell * K_];
+      float acc = 0.0f;
+      for (int k = 0; k < K_; ++k) accumulateField(&in[e[k].base], strideR, strideT, e[k].wr, e[k].wt, e[k].fb, acc);
+      out[cell] = acc;
+    }
+  });
+}
+
+std::vector<double> TransportStencil::isotropicCoarseOperator() const {
+  const int NS = field_->nodeCount(), D = field_->directionCount(), nt = field_->zenithCount();
+  const std::size_t strideR = field_->radialStride(), strideT = field_->zenithStride();
+  const std::vector<double>& q = field_->directions().nodeWeights();
+  const double inv4pi = 1.0 / (4.0 * kPi);
+  std::vector<double> Kc(static_cast<std::size_t>(NS) * NS, 0.0);
+  tbb::parallel_for(0, NS, [&](int sIdx) {
+    double* row = &Kc[static_cast<std::size_t>(sIdx) * NS];
+    for (int dd = 0; dd < D; ++dd) {
+      const Entry* e = &entries_[(static_cast<std::size_t>(sIdx) * D + dd) * K_];
+      const double qd = q[dd] * inv4pi;
+      for (int k = 0; k < K_; ++k) {
+        const std::size_t base = e[k].base;
+        const int ir0 = static_cast<int>(base / strideR), it0 = static_cast<int>((base % strideR) / strideT);
+        for (int c = 0; c < 4; ++c)
+          for (int t = 0; t < 4; ++t) row[(ir0 + c) * nt + it0 + t] += qd * e[k].wr[c] * e[k].wt[t];
+      }
+    }
+  });
+  return Kc;
+}
+
+ScatteringOperator::ScatteringOperator(const TransportStencil& transport, const std::vector<float>& Mt,
+                                       const SphereField& field)
+    : transport_(&transport), Mt_(&Mt), field_(&field), scratch_(field.size()) {}
+
+void ScatteringOperator::apply(const std::vector<float>& in, std::vector<float>& out) {
+  transport_->apply(in, scratch_);
+  const int D = field_->directionCount();
+  convolvePhase(scratch_, D, *Mt_, D, field_->nodeCount(), out);
+}
+
+}  // namespace cloudlut::bake

@@ -1,0 +1,63 @@
+#pragma once
+// The operator K = M·T that maps the source of one scattering order to the next in the fast
+// multiple-scattering method (MultipleScattering.h), on a SphereField:
+//   T (transport): L(x, ω) = ∫_0^{d(x, −ω)} σ e^{−σs} J(x − sω, ω) ds at every node x and direction
+//     ω, by attenuatedRayRule; J is read at the direction's own zenith node and interpolated
+//     in space (SphereField::locate). The K points of every (node, direction) ray are a
+//     stencil built once per density and reused by every order.
+//   M (phase convolution): J'(x, ω) = Σ_ω' M(ω, ω') L(x, ω'), one dense matrix product.
+#include <cstdint>
+#include <vector>
+
+#include "bake/SphereField.h"
+
+namespace cloudlut::bake {
+
+// out[s][i] = Σ_j in[s][j] · Mt[j][i] for every spatial node s of `nodes`: in has inCols values
+// per node, Mt is inCols × cols (a phase matrix transposed), out has cols values per node.
+void convolvePhase(const std::vector<float>& in, int inCols, const std::vector<float>& Mt, int cols, int nodes,
+                   std::vector<float>& out);
+
+class TransportStencil {
+ public:
+  // The stencil of T for optical radius σ with `points` quadrature points per ray (the rule
+  // may round up).
+  TransportStencil(const SphereField& field, double sigma, int points);
+
+  // out = T·in (fields of field.size() values).
+  void apply(const std::vector<float>& in, std::vector<float>& out) const;
+
+  // The isotropic coarse operator K_c = R·K·P, NS × NS row-major: P spreads a value per
+  // spatial node over every direction, R takes the angular mean Σ_d q_d/(4π) with the direction
+  // grid's node weights q. M conserves the angular mean, so R·M·T·P = R·T·P.
+  std::vector<double> isotropicCoarseOperator() const;
+
+ private:
+  struct Entry {
+    std::uint32_t base;  // node (radial start, zenith start, direction zenith, azimuth)
+    float wr[4];         // radial weights × quadrature weight
+    float wt[4];         // position-zenith weights
+    float fb;            // azimuth fraction
+  };
+  const SphereField* field_;
+  int K_ = 0;
+  std::vector<Entry> entries_;  // K per (node, direction), cell-major
+};
+
+// K = M·T on a field, with its own scratch space for T·in.
+class ScatteringOperator {
+ public:
+  // Mt: the later phase matrix transposed (D × D); both references must outlive the operator.
+  ScatteringOperator(const TransportStencil& transport, const std::vector<float>& Mt, const SphereField& field);
+  // out = K·in.
+  void apply(const std::vector<float>& in, std::vector<float>& out);
+  const TransportStencil& transport() const { return *transport_; }
+
+ private:
+  const TransportStencil* transport_;
+  const std::vector<float>* Mt_;
+  const SphereField* field_;
+  std::vector<float> scratch_;
+};
+
+}  // namespace cloudlut::bake

@@ -1,0 +1,90 @@
+#include "bake/SphereField.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cloudlut::bake {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
+void cubicWeights(double x, int n, int& start, float w[4]) {
+  const int i = std::clamp(static_cast<int>(x), 0, n - 2);
+  const double f = std::clamp(x - i, 0.0, 1.0);
+  if (i == 0) {
+    start = 0;
+    w[0] = static_cast<float>((f - 1) * (f - 2) / 2);
+    w[1] = static_cast<float>(-f * (f - 2));
+    w[2] = static_cast<float>(f * (f - 1) / 2);
+    w[3] = 0.0f;
+  } else if (i == n - 2) {
+    start = n - 4;
+    const double y = f + 1.0;  // relative to node n − 3
+    w[0] = 0.0f;
+    w[1] = static_cast<float>((y - 1) * (y - 2) / 2);
+    w[2] = static_cast<float>(-y * (y - 2));
+    w[3] = static_cast<float>(y * (y - 1) / 2);
+  } else {
+    start = i - 1;
+    const double f2 = f * f, f3 = f2 * f;
+    w[0] = static_cast<float>((-f3 + 2 * f2 - f) / 2);
+    w[1] = static_cast<float>((3 * f3 - 5 * f2 + 2) / 2);
+    w[2] = static_cast<float>((-3 * f3 + 4 * f2 + f) / 2);
+    w[3] = static_cast<float>((f3 - f2) / 2);
+  }
+}
+
+RadialAxis::RadialAxis(int nodes, double A, double linearShare)
+    : n_(nodes), A_(A), alpha_(A > 1e-9 ? linearShare : 1.0), logA_(A > 1e-9 ? std::log1p(A) : 1.0) {
+  // Node i: the depth δ with q(δ) = i/(n−1), by bisection.
+  radii_.resize(static_cast<std::size_t>(n_));
+  for (int i = 0; i < n_; ++i) {
+    const double target = static_cast<double>(i) / (n_ - 1);
+    double lo = 0.0, hi = 1.0;
+    for (int it = 0; it < 80; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (qOfDepth(mid) < target ? lo : hi) = mid;
+    }
+    radii_[static_cast<std::size_t>(i)] = i == 0 ? 1.0 : (i == n_ - 1 ? 0.0 : 1.0 - 0.5 * (lo + hi));
+  }
+}
+
+double RadialAxis::qOfDepth(double d) const {
+  return A_ > 1e-9 ? alpha_ * d + (1.0 - alpha_) * std::log1p(A_ * d) / logA_ : d;
+}
+
+double RadialAxis::q(double r) const { return qOfDepth(std::clamp(1.0 - r, 0.0, 1.0)); }
+
+void RadialAxis::cubic(double r, int& start, float w[4]) const { cubicWeights(q(r) * (n_ - 1), n_, start, w); }
+
+SphereField::SphereField(int nr, int nt, double grading, double linearShare, double sigma,
+                         const DirectionGrid& directions)
+    : nr_(nr), nt_(nt), directions_(&directions), radial_(nr, grading * sigma, linearShare) {
+  nodes_.resize(static_cast<std::size_t>(nodeCount()));
+  for (int ir = 0; ir < nr_; ++ir)
+    for (int it = 0; it < nt_; ++it) {
+      const double r = radial_.radius(ir), th = kPi * it / (nt_ - 1);
+      nodes_[static_cast<std::size_t>(ir * nt_ + it)] = r * glm::dvec3(std::sin(th), 0.0, std::cos(th));
+    }
+}
+
+FieldPoint SphereField::locate(const glm::dvec3& y, const glm::dvec3& w, double wh) const {
+  FieldPoint p;
+  const double rho = std::hypot(y.x, y.y);
+  const double r = std::sqrt(rho * rho + y.z * y.z);
+  int ir, it, ib;
+  radial_.cubic(r, ir, p.wr);
+  cubicWeights(std::atan2(rho, y.z) / kPi * (nt_ - 1), nt_, it, p.wt);
+  // Relative azimuth of the direction about l, folded to [0, π].
+  double phi = 0.0;
+  if (rho > 1e-12 && wh > 1e-12) phi = std::abs(std::atan2(w.y * y.x - w.x * y.y, w.x * y.x + w.y * y.y));
+  double fb;
+  directions_->locatePhi(phi, ib, fb);
+  p.fb = static_cast<float>(fb);
+  p.offset = static_cast<std::size_t>(ir) * radialStride() + static_cast<std::size_t>(it) * zenithStride() +
+             static_cast<std::size_t>(ib);
+  return p;
+}
+
+}  // namespace cloudlut::bake

@@ -1,0 +1,100 @@
+#pragma once
+// The volume grid of the fast multiple-scattering method (MultipleScattering.h) and the
+// interpolation of a field on it.
+//
+// A field J(x, ω) inside the unit sphere lit along −l is symmetric about l, so it is stored
+// in the meridian plane: nr depth-graded radial nodes × nt position-zenith nodes (the spatial
+// nodes s = ir·nt + it) × the D directions of a light-frame DirectionGrid (d = a·nb + b).
+// Value (s, d) sits at s·D + d. A sample at any point y and direction w is rotated about l
+// into the meridian plane and interpolated with quadratic-exact four-node weights in depth
+// and in position zenith and linearly in the relative azimuth; the direction's zenith node is
+// chosen by the caller (it is constant along a ray).
+#include <cstddef>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "bake/DirectionGrid.h"
+
+namespace cloudlut::bake {
+
+// Four-node interpolation weights at the continuous node coordinate x ∈ [0, n−1] of a uniform
+// axis of n ≥ 4 nodes: nodes start … start+3, exact for quadratics — Catmull–Rom inside,
+// three-point Lagrange in the first and last intervals. Linear interpolation of a curved field
+// in an optically thick medium acts like extra diffusion (it widens every step of the random
+// walk to the grid spacing); quadratic exactness removes that leading error.
+void cubicWeights(double x, int n, int& start, float w[4]);
+
+// Depth-graded radial axis: node i of n at q = i/(n−1), with
+//   q(δ) = α δ + (1 − α) ln(1 + A δ) / ln(1 + A),   δ = 1 − r (depth below the surface):
+// logarithmic near the surface (the boundary layer of the field is a few mean free paths thick,
+// with a logarithmic-derivative profile) and at least α-linear in the interior.
+class RadialAxis {
+ public:
+  RadialAxis(int nodes, double A, double linearShare);
+  double radius(int i) const { return radii_[static_cast<std::size_t>(i)]; }
+  // q(δ) at the radius r (clamped to [0, 1]).
+  double q(double r) const;
+  // Four-node weights (cubicWeights) in q at the radius r.
+  void cubic(double r, int& start, float w[4]) const;
+
+ private:
+  double qOfDepth(double d) const;
+  int n_ = 2;
+  double A_ = 0.0, alpha_ = 1.0, logA_ = 1.0;
+  std::vector<double> radii_;
+};
+
+// Where a point and a direction fall in a field: the first node (radial start, zenith start,
+// direction zenith 0, azimuth node b), four radial and four zenith weights and the azimuth
+// fraction.
+struct FieldPoint {
+  std::size_t offset = 0;
+  float wr[4] = {0, 0, 0, 0};
+  float wt[4] = {0, 0, 0, 0};
+  float fb = 0.0f;
+};
+
+// acc += Σ_j wr[j] · Σ_t wt[t] · (p[j, t] + fb · (p[j, t, b+1] − p[j, t])), term by term over j,
+// for p pointing at the first node of the stencil (its direction already chosen).
+inline void accumulateField(const float* p, std::size_t strideR, std::size_t strideT, const float wr[4],
+                            const float wt[4], float fb, float& acc) {
+  for (int c = 0; c < 4; ++c, p += strideR) {
+    const float* pt = p;
+    float a = 0.0f;
+    for (int t = 0; t < 4; ++t, pt += strideT) a += wt[t] * (pt[0] + fb * (pt[1] - pt[0]));
+    acc += wr[c] * a;
+  }
+}
+
+// The grid of one density slice (optical radius σ): layout, radial axis and node positions.
+class SphereField {
+ public:
+  // nr radial nodes graded with A = grading·σ, nt position-zenith nodes over [0, π], the
+  // directions of `directions`.
+  SphereField(int nr, int nt, double grading, double linearShare, double sigma, const DirectionGrid& directions);
+
+  int radialCount() const { return nr_; }
+  int zenithCount() const { return nt_; }
+  int nodeCount() const { return nr_ * nt_; }  // NS
+  int directionCount() const { return directions_->count(); }  // D
+  std::size_t size() const { return static_cast<std::size_t>(nodeCount()) * directionCount(); }
+  std::size_t radialStride() const { return static_cast<std::size_t>(nt_) * directionCount(); }
+  std::size_t zenithStride() const { return static_cast<std::size_t>(directionCount()); }
+  const DirectionGrid& directions() const { return *directions_; }
+  // Position of spatial node s = ir·nt + it in the meridian plane (y = 0).
+  const glm::dvec3& node(int s) const { return nodes_[static_cast<std::size_t>(s)]; }
+
+  // The interpolation stencil of the field at the point y (|y| ≤ 1) for the direction w, whose
+  // length in the plane perpendicular to l is wh = hypot(w.x, w.y) (passed in: it is constant
+  // along a ray). Its offset excludes the direction zenith: add a·nb for zenith node a.
+  FieldPoint locate(const glm::dvec3& y, const glm::dvec3& w, double wh) const;
+
+ private:
+  int nr_, nt_;
+  const DirectionGrid* directions_;
+  RadialAxis radial_;
+  std::vector<glm::dvec3> nodes_;
+};
+
+}  // namespace cloudlut::bake

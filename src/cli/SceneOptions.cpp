@@ -1,0 +1,115 @@
+#include "cli/SceneOptions.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "cli/Options.h"
+#include "core/Defaults.h"
+#include "core/Errors.h"
+#include "io/LutSetMedium.h"
+#include "render/Renderer.h"
+
+namespace cloudlut::cli {
+
+void addViewOptions(cxxopts::Options& options) {
+  options.add_options()
+    ("eye", "camera position x,y,z (overrides the scene)", cxxopts::value<std::string>())
+    ("target", "point the camera looks at x,y,z (overrides the scene)", cxxopts::value<std::string>())
+    ("up", "camera up vector x,y,z (overrides the scene; default 0,1,0)", cxxopts::value<std::string>())
+    ("fov", "vertical field of view, degrees (overrides the scene; default 45)", cxxopts::value<double>())
+    ("sun", "direction toward the sun x,y,z (overrides the scene)", cxxopts::value<std::string>())
+    ("sun-color", "sun irradiance r,g,b (overrides the scene; default 1,1,1)", cxxopts::value<std::string>())
+    ("sky-color", "sky radiance r,g,b (overrides the scene; 0,0,0 = no sky)", cxxopts::value<std::string>());
+}
+
+scene::ViewSettings parseViewOverrides(const cxxopts::ParseResult& args) {
+  scene::ViewSettings o;
+  if (args.count("eye")) o.eye = parseVec3Option(args["eye"].as<std::string>(), "eye", false);
+  if (args.count("target")) o.target = parseVec3Option(args["target"].as<std::string>(), "target", false);
+  if (args.count("up")) o.up = parseVec3Option(args["up"].as<std::string>(), "up", false);
+  if (args.count("fov")) {
+    const double fov = args["fov"].as<double>();
+    if (!(fov > 0.0 && fov <= 179.0)) throw UsageError("--fov: expected degrees in (0, 179]");
+    o.fovDeg = static_cast<float>(fov);
+  }
+  if (args.count("sun")) o.sunDirection = parseVec3Option(args["sun"].as<std::string>(), "sun", false);
+  if (args.count("sun-color")) o.sunColor = parseVec3Option(args["sun-color"].as<std::string>(), "sun-color", true);
+  if (args.count("sky-color")) o.skyColor = parseVec3Option(args["sky-color"].as<std::string>(), "sky-color", true);
+  if (o.up && !(glm::length(*o.up) > 0.0f)) throw UsageError("--up: must not be zero");
+  return o;
+}
+
+void addMediumOptions(cxxopts::Options& options, bool withLuts) {
+  if (withLuts)
+    options.add_options()("luts", "LUT directory whose manifest gives the density model, seed, beta, R and phase functions",
+                          cxxopts::value<std::string>());
+  char extinction[96], radius[96];
+  std::snprintf(extinction, sizeof extinction, "extinction coefficient beta, 1/m (default: the LUT set's, else %g)",
+                defaults::kExtinctionPerMetre);
+  std::snprintf(radius, sizeof radius, "reference particle radius R, m (default: the LUT set's, else %g)",
+                defaults::kParticleRadiusMetres);
+  options.add_options()
+    ("density-model", "reference particle density: noise, threshold, pyroclastic, radial, sphere (default: the LUT set's, else noise)",
+     cxxopts::value<std::string>())
+    ("model-seed", "seed of the density model (default: the LUT set's, else 1)", cxxopts::value<unsigned long long>())
+    ("extinction", extinction, cxxopts::value<double>())
+    ("radius", radius, cxxopts::value<double>());
+  addPhaseOptions(options, true);
+}
+
+Medium parseMedium(const cxxopts::ParseResult& args) {
+  Medium medium = args.count("luts") ? io::mediumFromLutSet(args["luts"].as<std::string>()) : Medium{};
+  if (args.count("density-model")) {
+    const auto model = parseDensityModel(args["density-model"].as<std::string>());
+    if (!model)
+      throw UsageError("--density-model: unknown model '" + args["density-model"].as<std::string>() +
+                       "' (noise, threshold, pyroclastic, radial, sphere)");
+    medium.model = *model;
+  }
+  if (args.count("model-seed")) medium.seed = args["model-seed"].as<unsigned long long>();
+  if (args.count("extinction")) medium.extinction = requirePositive(args["extinction"].as<double>(), "extinction");
+  if (args.count("radius")) medium.radius = requirePositive(args["radius"].as<double>(), "radius");
+  if (const std::optional<PhasePair> phases = parsePhaseOptions(args)) {
+    medium.first = phases->first;
+    medium.later = phases->later;
+  }
+  return medium;
+}
+
+unsigned parseTermList(const std::string& text) {
+  unsigned terms = 0;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    const std::string t = text.substr(start, end - start);
+    if (t == "single") terms |= render::kTermSingle;
+    else if (t == "multiple") terms |= render::kTermMultiple;
+    else if (t == "ambient") terms |= render::kTermAmbient;
+    else if (t == "all") terms |= render::kAllTerms;
+    else throw UsageError("--terms: unknown term '" + t + "' (single, multiple, ambient, all)");
+    start = end + 1;
+  }
+  return terms;
+}
+
+void addRayMarchOptions(cxxopts::Options& options) {
+  options.add_options()
+    ("method", "particles (the LUT renderer) or raymarch (the ray-marched baseline; --luts then only supplies "
+               "the density model and phase functions)", cxxopts::value<std::string>()->default_value("particles"))
+    ("steps", "raymarch: view-ray steps", cxxopts::value<int>()->default_value("64"))
+    ("adaptive", "raymarch: skip empty space, spread the steps over the occupied length")
+    ("shadow-steps", "raymarch: steps of each shadow ray toward the sun", cxxopts::value<int>()->default_value("6"))
+    ("octaves", "raymarch: Wrenninge multiple-scattering octaves (1 = single scattering)", cxxopts::value<int>()->default_value("8"))
+    ("octave-abc", "raymarch: per-octave attenuation a (extinction), b (contribution), c (anisotropy)",
+     cxxopts::value<std::string>()->default_value("0.5,0.5,0.5"));
+  addMediumOptions(options, false);
+}
+
+bool wantsRayMarch(const cxxopts::ParseResult& args) {
+  const std::string m = args["method"].as<std::string>();
+  if (m == "raymarch") return true;
+  if (m == "particles") return false;
+  throw UsageError("--method: unknown method '" + m + "' (particles, raymarch)");
+}
+
+}  // namespace cloudlut::cli

@@ -1,0 +1,34 @@
+#pragma once
+// The scene options of `cloudlut reference scene` and `cloudlut render` (both methods): the
+// camera and sun (the same names and formats for every verb), the medium a particle list
+// describes (density model, β, R, phase functions; from a LUT set's manifest or from options),
+// the lighting terms and the ray marcher's options.
+#include <cxxopts.hpp>
+
+#include "core/Medium.h"
+#include "scene/Scene.h"
+
+namespace cloudlut::cli {
+
+// --eye, --target, --up, --fov, --sun, --sun-color, --sky-color.
+void addViewOptions(cxxopts::Options& options);
+scene::ViewSettings parseViewOverrides(const cxxopts::ParseResult& args);
+
+// --density-model, --model-seed, --extinction, --radius and the phase options (cli/Options.h),
+// each overriding the LUT set's value (io/LutSetMedium.h) when --luts is given, else the
+// defaults; `withLuts` also adds --luts.
+void addMediumOptions(cxxopts::Options& options, bool withLuts);
+Medium parseMedium(const cxxopts::ParseResult& args);
+
+// "single,multiple,ambient|all" → render::Term bits; UsageError naming --terms.
+unsigned parseTermList(const std::string& text);
+
+// Adds --method (particles | raymarch) and the ray marcher's options to `cloudlut render`.
+void addRayMarchOptions(cxxopts::Options& options);
+// True when the parsed render arguments ask for --method raymarch (UsageError for an unknown
+// method).
+bool wantsRayMarch(const cxxopts::ParseResult& args);
+// `cloudlut render --method raymarch ...`: the verb for that method (RenderRayMarch.cpp).
+int runRayMarchRender(const cxxopts::ParseResult& args);
+
+}  // namespace cloudlut::cli

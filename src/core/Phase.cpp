@@ -1,0 +1,66 @@
+#include "core/Phase.h"
+
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "core/Errors.h"
+#include "core/Glsl.h"
+
+namespace cloudlut {
+
+static_assert(glslKind(PhaseKind::Isotropic) == glsl::CLOUDLUT_PHASE_ISOTROPIC);
+static_assert(glslKind(PhaseKind::HenyeyGreenstein) == glsl::CLOUDLUT_PHASE_HENYEY_GREENSTEIN);
+static_assert(glslKind(PhaseKind::CornetteShanks) == glsl::CLOUDLUT_PHASE_CORNETTE_SHANKS);
+static_assert(glslKind(PhaseKind::JendersieDeon) == glsl::CLOUDLUT_PHASE_JENDERSIE_DEON);
+
+std::optional<PhaseKind> phaseKindFromInt(int k) {
+  if (k < glslKind(PhaseKind::Isotropic) || k > glslKind(PhaseKind::JendersieDeon)) return std::nullopt;
+  return static_cast<PhaseKind>(k);
+}
+
+const char* phaseKindName(PhaseKind kind) {
+  switch (kind) {
+    case PhaseKind::HenyeyGreenstein: return "henyey_greenstein";
+    case PhaseKind::CornetteShanks: return "cornette_shanks";
+    case PhaseKind::JendersieDeon: return "jendersie_deon";
+    case PhaseKind::Isotropic: break;
+  }
+  return "isotropic";
+}
+
+std::string describePhase(const Phase& p) {
+  char buf[64];
+  if (p.kind == PhaseKind::HenyeyGreenstein || p.kind == PhaseKind::CornetteShanks)
+    std::snprintf(buf, sizeof buf, "%s g=%g", p.kind == PhaseKind::HenyeyGreenstein ? "hg" : "cs",
+                  static_cast<double>(p.param));
+  else if (p.kind == PhaseKind::JendersieDeon)
+    std::snprintf(buf, sizeof buf, "jd d=%g um", static_cast<double>(p.param));
+  else
+    std::snprintf(buf, sizeof buf, "iso");
+  return buf;
+}
+
+float phaseValue(const Phase& phase, float mu) { return glsl::phaseFunction(glslKind(phase.kind), mu, phase.param); }
+
+nlohmann::json phaseToJson(const Phase& p) {
+  return {{"kind", glslKind(p.kind)}, {"param", p.param}, {"name", phaseKindName(p.kind)}};
+}
+
+Phase phaseFromJson(const nlohmann::json& j, const std::string& file, const std::string& field) {
+  if (!j.is_object() || !j.contains("kind") || !j["kind"].is_number_integer() || !j.contains("param") ||
+      !j["param"].is_number())
+    throw FileError(file, field + ": expected {\"kind\": integer, \"param\": number}");
+  const int k = j["kind"].get<int>();
+  const std::optional<PhaseKind> kind = phaseKindFromInt(k);
+  if (!kind) throw FileError(file, field + ": unknown phase kind " + std::to_string(k));
+  return {*kind, j["param"].get<float>()};
+}
+
+Phase recordedPhase(const nlohmann::json& parameters, const char* key, const Phase& fallback) {
+  const nlohmann::json phase = parameters.value(key, nlohmann::json::object());
+  const int kind = phase.value("kind", glslKind(fallback.kind));
+  return {phaseKindFromInt(kind).value_or(PhaseKind::Isotropic), phase.value("param", fallback.param)};
+}
+
+}  // namespace cloudlut
