@@ -271,6 +271,8 @@ TEST_CASE("render CLI: absurd sizes and bad options are usage errors", "[render]
       "--up 0,0,0",
       "--exposure 0",
       "--terms sunlight",
+      "--lighting bogus",
+      "--sunlight nowhere",
       "--eye 0,0,0 --target 0,0,0",
       "--no-such-option",
   };

@@ -4,10 +4,13 @@
 //
 // Rows: method "path-traced" (the reference itself: seconds, and in error_mean the RMS of its
 // per-pixel standard error over the cloud pixels, i.e. its noise floor), "lut-alpha" and "lut-volume" (the
-// particle renderer from tables baked at reduced resolution, alpha blending), "raymarch" and
+// particle renderer from tables baked at reduced resolution, alpha or volume-aware blending,
+// with the cloud lighting model; "-seed" appended: the seed's model; "-18" appended: 18-order
+// instead of converged multiple scattering), "raymarch" and
 // "raymarch-adaptive" at several step counts. error_mean = RMSE of R, G, B over the cloud
 // pixels, error_p95 = 95th percentile of the per-pixel |error| (mean of the channels),
-// error_max = largest error; the note holds the relative RMSE, bias and SSIM. Times are the
+// error_max = largest error; the note holds the relative RMSE, the relative RMSE with the
+// reference's noise removed (nc_rel_rmse), the relative bias and SSIM. Times are the
 // best of three renders (GPU draw + finish, llvmpipe on this machine), not counting set-up.
 //
 // Caches under OUT/ground-truth: the reference EXRs (keyed by a hash of the scene file and every
@@ -45,7 +48,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kWidth = 96, kHeight = 64;
-const char* const kScenes[] = {"one", "two", "three", "cluster", "cloudscape"};
+const char* const kScenes[] = {"one",   "one-rho1", "one-rho4",  "backlit",   "two",
+                               "three", "cluster",  "cluster36", "cloudscape"};
 
 fs::path findSceneDir() {
   std::vector<fs::path> candidates = {fs::current_path() / "data" / "bench_scenes"};
@@ -76,7 +80,7 @@ std::string hex(std::uint64_t v) {
 
 // The LUT set the particle renderer uses: optical depth of the medium's model and scattering
 // tables baked at reduced resolution (converged multiple scattering); cached in `dir`.
-bool ensureLutSet(const fs::path& dir, const Medium& medium, bool quick, std::string& note) {
+bool ensureLutSet(const fs::path& dir, const Medium& medium, bool quick, int orders, std::string& note) {
   if (fs::exists(dir / "manifest.json")) return true;
   try {
     fs::create_directories(dir);
@@ -85,7 +89,7 @@ bool ensureLutSet(const fs::path& dir, const Medium& medium, bool quick, std::st
     const Table4D depth = bake::bakeOpticalDepth(ReferenceParticle(medium.model, medium.seed), od);
     bake::ScatteringSettings sc;
     sc.dims = {16, 32, 8, 8};  // reduced resolution: the default bake is slow on shared machines
-    sc.orders = 0;
+    sc.orders = orders;  // 0: converged
     const bake::ScatteringResult r = bake::bakeScattering(sc);
     if (!r.single || !r.multiple) throw std::runtime_error("the scattering baker returned no tables");
     nlohmann::json entries = nlohmann::json::object();
@@ -116,8 +120,15 @@ Errors judge(const render::Image& img, const io::ExrImage& ref) {
     a[i] = img.rgba[4 * i + 3];
   }
   const reference::RgbaView va{img.width, img.height, r.data(), g.data(), b.data(), a.data()};
-  const reference::RgbaView vb{ref.width, ref.height, ref.channel("R").data(), ref.channel("G").data(),
-                               ref.channel("B").data(), ref.channel("A").data()};
+  const reference::RgbaView vb{ref.width,
+                               ref.height,
+                               ref.channel("R").data(),
+                               ref.channel("G").data(),
+                               ref.channel("B").data(),
+                               ref.channel("A").data(),
+                               ref.channel("stderr.R").data(),
+                               ref.channel("stderr.G").data(),
+                               ref.channel("stderr.B").data()};
   Errors out;
   out.e = reference::compareImages(va, vb);
   std::vector<double> pixel;
@@ -132,9 +143,9 @@ Errors judge(const render::Image& img, const io::ExrImage& ref) {
 }
 
 std::string noteOf(const reference::ImageErrors& e) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "rel_rmse=%.4f bias=%.3g ssim=%.4f alpha_rmse=%.3g", e.relativeRmse, e.bias, e.ssim,
-                e.alphaRmse);
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "rel_rmse=%.4f nc_rel_rmse=%.4f rel_bias=%+.4f ssim=%.4f alpha_rmse=%.3g",
+                e.relativeRmse, e.noiseCorrectedRelativeRmse, e.relativeBias, e.ssim, e.alphaRmse);
   return buf;
 }
 
@@ -150,23 +161,30 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
 
   const Medium medium;  // the defaults (core/Defaults.h): noise model, seed 1, β, R, CS g 0.9 then 0.7
   std::string lutNote;
-  // one cache per format version: tables of an older version are not re-read (re-baked instead)
-  const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + (options.quick ? "-quick" : ""));
-  reportProgress(options.progress, "ground-truth: LUT set", 0.0);
-  const bool haveLuts = ensureLutSet(lutDir, medium, options.quick, lutNote);
-  const ReferenceParticle particle(medium.model, medium.seed);
-
   const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
-  std::unique_ptr<io::LutSet> luts;
-  std::unique_ptr<render::Renderer> lutRenderer;
-  if (haveLuts) {
+  // Two LUT sets: converged and 18-order multiple scattering. One cache per format version:
+  // tables of an older version are not re-read (re-baked instead).
+  struct LutRenderer {
+    std::string suffix;
+    std::unique_ptr<io::LutSet> luts;
+    std::unique_ptr<render::Renderer> renderer;
+  };
+  std::vector<LutRenderer> lutRenderers;
+  for (const int orders : {0, 18}) {
+    const std::string tag = orders == 0 ? "" : "-" + std::to_string(orders);
+    const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + tag + (options.quick ? "-quick" : ""));
+    reportProgress(options.progress, "ground-truth: LUT set" + tag, 0.0);
+    if (!ensureLutSet(lutDir, medium, options.quick, orders, lutNote)) continue;
     try {
-      luts = std::make_unique<io::LutSet>(io::readLutSet(lutDir));
-      lutRenderer = std::make_unique<render::Renderer>(*context, *luts);
+      LutRenderer lr{tag, std::make_unique<io::LutSet>(io::readLutSet(lutDir)), nullptr};
+      lr.renderer = std::make_unique<render::Renderer>(*context, *lr.luts);
+      lutRenderers.push_back(std::move(lr));
     } catch (const std::exception& e) {
       lutNote = std::string("LUT renderer not available: ") + e.what();
     }
   }
+  const ReferenceParticle particle(medium.model, medium.seed);
+
   render::RayMarchRenderer marcher(*context, particle);
   const std::vector<int> steps = options.quick ? std::vector<int>{8, 32, 128} : std::vector<int>{4, 8, 16, 32, 64, 128, 256};
 
@@ -248,19 +266,26 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
       return t;
     };
 
-    if (lutRenderer) {
-      for (const render::BlendMode blend : {render::BlendMode::Alpha, render::BlendMode::Volume}) {
-        render::RenderSettings rs;
-        rs.width = kWidth;
-        rs.height = kHeight;
-        rs.view = view;
-        rs.blend = blend;
-        render::Image img;
-        const double t = best([&](render::RenderStats* s) { return lutRenderer->render(scene.particles, rs, s); }, img);
-        addRow(blend == render::BlendMode::Alpha ? "lut-alpha" : "lut-volume", 0, img, t,
-               "; tables " + luts->tables.at("multiple_scattering").table.name() + " converged, reduced resolution");
-      }
-    }
+    for (const LutRenderer& lr : lutRenderers)
+      for (const render::LightingModel lighting : {render::LightingModel::Cloud, render::LightingModel::Seed})
+        for (const render::BlendMode blend : {render::BlendMode::Alpha, render::BlendMode::Volume}) {
+          render::RenderSettings rs;
+          rs.width = kWidth;
+          rs.height = kHeight;
+          rs.view = view;
+          rs.blend = blend;
+          rs.lighting = lighting;
+          rs.sunlight = render::defaultSunlight(lighting);
+          render::Image img;
+          const double t =
+              best([&](render::RenderStats* s) { return lr.renderer->render(scene.particles, rs, s); }, img);
+          const std::string method = std::string(blend == render::BlendMode::Alpha ? "lut-alpha" : "lut-volume") +
+                                     (lighting == render::LightingModel::Seed ? "-seed" : "") + lr.suffix;
+          addRow(method, 0, img, t,
+                 std::string("; lighting ") + toString(lighting) + ", sunlight " + toString(rs.sunlight) + ", tables " +
+                     lr.luts->tables.at("multiple_scattering").table.name() +
+                     (lr.suffix.empty() ? " converged" : " 18 orders") + ", reduced resolution");
+        }
     for (const bool adaptive : {false, true})
       for (const int n : steps) {
         render::RayMarchSettings rm;

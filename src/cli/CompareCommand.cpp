@@ -29,6 +29,11 @@ reference::RgbaView viewOf(const io::ExrImage& img, const std::string& path) {
   v.g = img.channel("G").data();
   v.b = img.channel("B").data();
   v.a = img.has("A") ? img.channel("A").data() : nullptr;
+  if (img.has("stderr.R") && img.has("stderr.G") && img.has("stderr.B")) {
+    v.seR = img.channel("stderr.R").data();
+    v.seG = img.channel("stderr.G").data();
+    v.seB = img.channel("stderr.B").data();
+  }
   return v;
 }
 
@@ -98,21 +103,33 @@ int runCompare(int argc, char** argv) {
   const std::string pathA = args["a"].as<std::string>(), pathB = args["b"].as<std::string>();
   const io::ExrImage imgA = io::readExrImage(pathA);
   const io::ExrImage imgB = io::readExrImage(pathB);
-  const reference::RgbaView a = viewOf(imgA, pathA), b = viewOf(imgB, pathB);
+  reference::RgbaView a = viewOf(imgA, pathA);
+  const reference::RgbaView b = viewOf(imgB, pathB);
+  a.seR = a.seG = a.seB = nullptr;  // only the reference's noise is accounted for
   if (a.width != b.width || a.height != b.height)
     throw FileError(pathB, "is " + std::to_string(b.width) + "x" + std::to_string(b.height) + " but " + pathA + " is " +
                                std::to_string(a.width) + "x" + std::to_string(a.height) + " (sizes must match)");
   const reference::ImageErrors e = reference::compareImages(a, b, threshold);
 
   if (args.count("json")) {
-    std::printf("{\"pixels\": %zu, \"rmse\": %.9g, \"rel_rmse\": %.9g, \"bias\": %.9g, \"ssim\": %.9g, "
-                "\"max_error\": %.9g, \"alpha_rmse\": %.9g, \"reference_rms\": %.9g}\n",
-                e.pixels, e.rmse, e.relativeRmse, e.bias, e.ssim, e.maxError, e.alphaRmse, e.referenceRms);
+    std::printf("{\"pixels\": %zu, \"rmse\": %.9g, \"rel_rmse\": %.9g, \"bias\": %.9g, \"rel_bias\": %.9g, "
+                "\"ssim\": %.9g, \"max_error\": %.9g, \"alpha_rmse\": %.9g, \"reference_rms\": %.9g",
+                e.pixels, e.rmse, e.relativeRmse, e.bias, e.relativeBias, e.ssim, e.maxError, e.alphaRmse,
+                e.referenceRms);
+    if (e.hasReferenceNoise)
+      std::printf(", \"reference_noise\": %.9g, \"nc_rel_rmse\": %.9g", e.referenceNoise,
+                  e.noiseCorrectedRelativeRmse);
+    std::printf("}\n");
   } else {
     std::printf("pixels      %zu (alpha > %g in either image, of %dx%d)\n", e.pixels, threshold, a.width, a.height);
     std::printf("rmse        %.6g\n", e.rmse);
     std::printf("rel_rmse    %.6g\n", e.relativeRmse);
     std::printf("bias        %.6g\n", e.bias);
+    std::printf("rel_bias    %.6g\n", e.relativeBias);
+    if (e.hasReferenceNoise) {
+      std::printf("ref_noise   %.6g (the reference's relative noise)\n", e.referenceNoise);
+      std::printf("nc_rel_rmse %.6g (rel_rmse with the reference's noise removed)\n", e.noiseCorrectedRelativeRmse);
+    }
     std::printf("ssim        %.6f\n", e.ssim);
     std::printf("max_error   %.6g\n", e.maxError);
     std::printf("alpha_rmse  %.6g\n", e.alphaRmse);

@@ -59,7 +59,8 @@ ImageErrors compareImages(const RgbaView& a, const RgbaView& b, double alphaThre
       mask[i] = (a.a && a.a[i] > alphaThreshold) || (b.a && b.a[i] > alphaThreshold);
 
   ImageErrors e;
-  double sum2 = 0, sumRef2 = 0, sum = 0, alpha2 = 0;
+  double sum2 = 0, sumRef2 = 0, sum = 0, sumRef = 0, alpha2 = 0, se2 = 0;
+  const bool noise = b.seR && b.seG && b.seB;
   std::vector<double> ya(n), yb(n);
   double range = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -74,8 +75,10 @@ ImageErrors compareImages(const RgbaView& a, const RgbaView& b, double alphaThre
       sum += d;
       sum2 += d * d;
       sumRef2 += cb[c] * cb[c];
+      sumRef += cb[c];
       e.maxError = std::max(e.maxError, std::abs(d));
     }
+    if (noise) se2 += double(b.seR[i]) * b.seR[i] + double(b.seG[i]) * b.seG[i] + double(b.seB[i]) * b.seB[i];
     const double da = (a.a ? a.a[i] : 1.0) - (b.a ? b.a[i] : 1.0);
     alpha2 += da * da;
   }
@@ -86,6 +89,12 @@ ImageErrors compareImages(const RgbaView& a, const RgbaView& b, double alphaThre
   e.referenceRms = std::sqrt(sumRef2 / count);
   e.relativeRmse = e.referenceRms > 0 ? e.rmse / e.referenceRms : (e.rmse > 0 ? INFINITY : 0.0);
   e.alphaRmse = std::sqrt(alpha2 / static_cast<double>(e.pixels));
+  e.relativeBias = sumRef != 0 ? sum / sumRef : 0.0;
+  if (noise && e.referenceRms > 0) {
+    e.hasReferenceNoise = true;
+    e.referenceNoise = std::sqrt(se2 / count) / e.referenceRms;
+    e.noiseCorrectedRelativeRmse = std::sqrt(std::max(0.0, (sum2 - se2) / count)) / e.referenceRms;
+  }
   const std::vector<double> map = ssimMap(ya, yb, a.width, a.height, std::max(range, 1e-6));
   double s = 0;
   for (std::size_t i = 0; i < n; ++i)

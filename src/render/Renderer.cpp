@@ -228,6 +228,18 @@ struct Renderer::Impl {
     return generation.readBack(generation.run(cloud, q, s, false), cloud, q, s);
   }
 
+  Renderer::SunVolumeSnapshot sunVolumeOf(const std::vector<scene::Particle>& list, const RenderSettings& s) {
+    validate(s);
+    std::vector<std::size_t> order(list.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    upload.upload(list, order, s.view.camera.eye, glm::normalize(s.view.lighting.sunDirection));
+    const SunVolumeGrid grid = sunGridFor(list, s);
+    if (!list.empty())
+      sunVolume.build(grid, list.size(), particles.tables().opticalDepthTexture(), particles.tables().opticalDepthDims(),
+                      particles.tables().unitOpticalRadius(), false);
+    return {grid, list.empty() ? std::vector<float>{} : sunVolume.readBack()};
+  }
+
   std::vector<float> sunlight(const std::vector<scene::Particle>& list, const RenderSettings& s) {
     validate(s);
     std::vector<std::size_t> order(list.size());
@@ -262,6 +274,11 @@ scene::CpuGeneration Renderer::generateOnGpu(const scene::CloudType& cloud, cons
 
 std::vector<float> Renderer::sunlight(const std::vector<scene::Particle>& particles, const RenderSettings& settings) {
   return impl_->sunlight(particles, settings);
+}
+
+Renderer::SunVolumeSnapshot Renderer::sunVolume(const std::vector<scene::Particle>& particles,
+                                                const RenderSettings& settings) {
+  return impl_->sunVolumeOf(particles, settings);
 }
 
 }  // namespace cloudlut::render

@@ -37,6 +37,7 @@
 #include "render/GlContext.h"
 #include "render/RenderTypes.h"
 #include "scene/Cloudscape.h"
+#include "render/SunVolumeGrid.h"
 #include "scene/Scene.h"
 
 namespace cloudlut::render {
@@ -63,6 +64,15 @@ class Renderer {
 
   // Sunlight reaching each particle after the occlusion pass (same order as `particles`).
   std::vector<float> sunlight(const std::vector<scene::Particle>& particles, const RenderSettings& settings);
+
+  // The sun optical-depth volume the cloud lighting builds for `particles` under `settings`
+  // (docs/LIGHTING.md): its grid and the optical depth toward the sun at every node
+  // (dimensionless; SunVolume::readBack's order), for tests and tools.
+  struct SunVolumeSnapshot {
+    SunVolumeGrid grid;
+    std::vector<float> tau;
+  };
+  SunVolumeSnapshot sunVolume(const std::vector<scene::Particle>& particles, const RenderSettings& settings);
 
  private:
   struct Impl;

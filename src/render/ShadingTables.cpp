@@ -4,7 +4,8 @@
 #include <cmath>
 
 #include "core/Errors.h"
-#include "core/Glsl.h"
+#include "core/Defaults.h"
+#include "core/Phase.h"
 #include "core/TableLookup.h"
 
 namespace cloudlut::render {
@@ -21,13 +22,13 @@ const Table4D& requireTable(const io::LutSet& luts, const std::string& name) {
 
 // ∫ μ P(μ) dω = 2π ∫_{-1}^{1} μ P(μ) dμ (midpoint rule in θ on 4096 steps: the forward peaks of
 // the cloud phase functions are a degree wide).
-float meanCosine(int kind, float param) {
+float meanCosine(const Phase& phase) {
   constexpr int kSteps = 4096;
   double sum = 0.0;
   for (int i = 0; i < kSteps; ++i) {
     const double theta = (i + 0.5) * 3.14159265358979323846 / kSteps;
     const double mu = std::cos(theta);
-    sum += mu * glsl::phaseFunction(kind, static_cast<float>(mu), param) * std::sin(theta);
+    sum += mu * phaseValue(phase, static_cast<float>(mu)) * std::sin(theta);
   }
   return static_cast<float>(2.0 * 3.14159265358979323846 * sum * 3.14159265358979323846 / kSteps);
 }
@@ -53,31 +54,17 @@ ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, co
   unitOpticalRadius_ = cloudlut::unitOpticalRadius(od);
   if (!(unitOpticalRadius_ > 0.0f) || !std::isfinite(unitOpticalRadius_))
     throw FileError(luts_, "optical_depth: extinction_per_m · radius_m is not a positive number");
-  const nlohmann::json phase = l1.parameters().value("first_phase", nlohmann::json::object());
-  if (!phase.is_object()) throw FileError(luts_, "single_scattering: parameter first_phase is not an object");
-  try {
-    firstPhaseKind_ = phase.value("kind", 2);
-    firstPhaseParam_ = phase.value("param", 0.9f);
-  } catch (const nlohmann::json::exception&) {
-    throw FileError(luts_, "single_scattering: first_phase.kind/param are not numbers");
-  }
-  if (firstPhaseKind_ < 0 || firstPhaseKind_ > 3 || !std::isfinite(firstPhaseParam_))
-    throw FileError(luts_, "single_scattering: unknown first_phase kind " + std::to_string(firstPhaseKind_));
-
-  const nlohmann::json later = lm.parameters().value("later_phase", nlohmann::json::object());
-  int laterKind = 2;
-  float laterParam = 0.7f;
-  try {
-    if (later.is_object()) {
-      laterKind = later.value("kind", 2);
-      laterParam = later.value("param", 0.7f);
-    }
-  } catch (const nlohmann::json::exception&) {
-    throw FileError(luts_, "multiple_scattering: later_phase.kind/param are not numbers");
-  }
-  if (laterKind < 0 || laterKind > 3 || !std::isfinite(laterParam))
-    throw FileError(luts_, "multiple_scattering: unknown later_phase kind " + std::to_string(laterKind));
-  laterAsymmetry_ = std::clamp(meanCosine(laterKind, laterParam), 0.0f, 0.99f);
+  // The phases the tables were baked with (FileError naming the field when malformed); a table
+  // that records none was baked with the defaults.
+  const auto phaseOf = [&](const Table4D& t, const char* key, const Phase& fallback) {
+    const nlohmann::json& params = t.parameters();
+    return params.contains(key) ? phaseFromJson(params[key], luts_, t.name() + ": " + key) : fallback;
+  };
+  const Phase first = phaseOf(l1, "first_phase", defaults::kFirstPhase);
+  const Phase later = phaseOf(lm, "later_phase", defaults::kLaterPhase);
+  firstPhaseKind_ = glslKind(first.kind);
+  firstPhaseParam_ = first.param;
+  laterAsymmetry_ = std::clamp(meanCosine(later), 0.0f, 0.99f);
 
   try {
     opticalDepth_ = upload(context, od, false);

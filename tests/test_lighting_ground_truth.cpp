@@ -1,0 +1,114 @@
+// The lighting models against the path-traced ground truth of the same particles
+// (reference/ScenePathTracer, an independent Monte Carlo of the same medium): the cloud model
+// (docs/LIGHTING.md) must bring an isolated ρ = 1 particle and the 9-particle bench cluster
+// within bounds that the seed's model (§4.4, §5.3) misses. Both use the default converged
+// tables (the test fixture) and the default noise particle.
+//
+// Metric: relative RMSE over the cloud pixels with the reference's own Monte Carlo variance
+// removed (reference/SceneCompare.h, nc_rel_rmse), and the relative bias.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "bake/OpticalDepthBaker.h"
+#include "core/Medium.h"
+#include "reference/ReferenceImage.h"
+#include "reference/SceneCompare.h"
+#include "render/GlContext.h"
+#include "render/Renderer.h"
+#include "scene/Scene.h"
+#include "support/BakedFixtures.h"
+#include "support/RenderLuts.h"
+#include "support/TempDir.h"
+
+using namespace cloudlut;
+using namespace cloudlut::test;
+
+namespace {
+
+constexpr int kWidth = 64, kHeight = 44;
+
+struct Judged {
+  double ncRelRmse = 0, relBias = 0, refNoise = 0;
+};
+
+Judged judge(const render::Image& img, const io::ExrImage& ref) {
+  const std::size_t n = ref.pixelCount();
+  std::vector<float> r(n), g(n), b(n), a(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    r[i] = img.rgba[4 * i];
+    g[i] = img.rgba[4 * i + 1];
+    b[i] = img.rgba[4 * i + 2];
+    a[i] = img.rgba[4 * i + 3];
+  }
+  const reference::RgbaView va{img.width, img.height, r.data(), g.data(), b.data(), a.data()};
+  const reference::RgbaView vb{ref.width,
+                               ref.height,
+                               ref.channel("R").data(),
+                               ref.channel("G").data(),
+                               ref.channel("B").data(),
+                               ref.channel("A").data(),
+                               ref.channel("stderr.R").data(),
+                               ref.channel("stderr.G").data(),
+                               ref.channel("stderr.B").data()};
+  const reference::ImageErrors e = reference::compareImages(va, vb);
+  return {e.noiseCorrectedRelativeRmse, e.relativeBias, e.referenceNoise};
+}
+
+}  // namespace
+
+TEST_CASE("lighting: the cloud model meets the path tracer where the seed's model misses", "[render][lighting]") {
+  TempDir tmp;
+  const Medium medium;  // the defaults: noise particle, seed 1, CS g 0.9 then 0.7
+  bake::OpticalDepthSettings ods;
+  ods.dims = {32, 16, 32, 16};
+  const Table4D od = bake::bakeOpticalDepth(ReferenceParticle(medium.model, medium.seed), ods);
+  const bake::ScatteringResult& sc = defaultScattering(0);
+  REQUIRE(sc.single);
+  REQUIRE(sc.multiple);
+  writeLutSet(tmp / "luts", {&od, &*sc.single, &*sc.multiple});
+  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  auto context = render::createHeadlessContext();
+  render::Renderer renderer(*context, luts);
+
+  struct Case {
+    const char* scene;
+    int spp;
+    double cloudMax, cloudBiasMax, seedMin;  // bounds on nc_rel_rmse and |rel_bias|
+  };
+  // Measured at 96×64 (docs/LIGHTING.md): one ρ = 1 particle, seed 30.5% (bias +29%), cloud
+  // 7.0% (+3.3%); the 9-particle cluster, seed 19.7% (−13%), cloud 13.7% (−4.6%).
+  const Case cases[] = {{"one-rho1", 256, 0.12, 0.07, 0.22}, {"cluster", 128, 0.15, 0.08, 0.15}};
+  for (const Case& c : cases) {
+    INFO(c.scene);
+    const scene::Scene s = scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/" + c.scene + ".json");
+    const scene::View view = scene::resolveView(s, {});
+    reference::ScenePtSettings pt;
+    pt.samplesPerPixel = c.spp;
+    const io::ExrImage ref = reference::renderReferenceScene(s.particles, view, medium, pt, kWidth, kHeight);
+
+    Judged j[2];
+    for (const render::LightingModel lighting : {render::LightingModel::Seed, render::LightingModel::Cloud}) {
+      render::RenderSettings rs;
+      rs.width = kWidth;
+      rs.height = kHeight;
+      rs.view = view;
+      rs.blend = render::BlendMode::Volume;
+      rs.lighting = lighting;
+      rs.sunlight = render::defaultSunlight(lighting);
+      j[lighting == render::LightingModel::Cloud] = judge(renderer.render(s.particles, rs), ref);
+    }
+    std::printf("lighting ground truth %-9s ref noise %.3f  seed nc_rel_rmse %.3f bias %+.3f  cloud %.3f bias %+.3f\n",
+                c.scene, j[0].refNoise, j[0].ncRelRmse, j[0].relBias, j[1].ncRelRmse, j[1].relBias);
+    // The reference is noisy at this size (relative noise 17% and 26% measured); its variance is
+    // subtracted per pixel, which over ~1000 cloud pixels reproduced the low-noise 96×64 figures
+    // within 2 points (one-rho1: seed 31.7%, cloud 9.1%; cluster: seed 17.4%, cloud 11.4%).
+    CHECK(j[0].refNoise < 0.35);
+    CHECK(j[1].ncRelRmse <= c.cloudMax);
+    CHECK(std::abs(j[1].relBias) <= c.cloudBiasMax);
+    CHECK(j[0].ncRelRmse >= c.seedMin);
+    CHECK(j[1].ncRelRmse < 0.75 * j[0].ncRelRmse);
+  }
+}
