@@ -1,0 +1,177 @@
+// The viewer's pieces that need no window: the fly camera and sun angles against the pinhole
+// camera's own projection (scene::CameraFrame), the controls' state changes, the camera-path
+// format, and the LUT-set and screenshot-name choices. The window itself is tested under Xvfb
+// (tests/view/test_view_window.py).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/Errors.h"
+#include "scene/CameraPath.h"
+#include "support/TempDir.h"
+#include "view/FlyCamera.h"
+#include "view/Viewer.h"
+#include "view/ViewerControls.h"
+
+using namespace cloudlut;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// Pixel column of a world point in a w × h image of `camera`, from CameraFrame's ray directions
+// (the column whose ray has the point's horizontal angle; bisection).
+float projectedColumn(const scene::Camera& camera, const glm::vec3& point, int w, int h) {
+  const scene::CameraFrame frame(camera, w, h);
+  const glm::vec3 toPoint = glm::normalize(point - camera.eye);
+  const glm::vec3 right = glm::normalize(glm::cross(frame.forward(), camera.up));
+  float lo = -10.0f * static_cast<float>(w), hi = 11.0f * static_cast<float>(w);
+  for (int i = 0; i < 80; ++i) {
+    const float mid = 0.5f * (lo + hi);
+    const float side = glm::dot(frame.rayDirection(mid, 0.5f * static_cast<float>(h)), right) /
+                           glm::dot(frame.rayDirection(mid, 0.5f * static_cast<float>(h)), frame.forward()) -
+                       glm::dot(toPoint, right) / glm::dot(toPoint, frame.forward());
+    (side < 0.0f ? lo : hi) = mid;
+  }
+  return 0.5f * (lo + hi);
+}
+
+}  // namespace
+
+TEST_CASE("view: fly camera angles reproduce a look-at camera; turning left moves the picture right", "[view]") {
+  scene::Camera look;
+  look.eye = {100.0f, 600.0f, 50.0f};
+  look.target = {-400.0f, 900.0f, -5000.0f};
+  look.fovDeg = 50.0f;
+  const view::FlyCamera fly = view::FlyCamera::fromCamera(look);
+  const glm::vec3 expected = glm::normalize(look.target - look.eye);
+  CHECK(glm::length(fly.forward() - expected) < 1e-5f);
+  CHECK(std::abs(glm::dot(fly.right(), fly.forward())) < 1e-5f);
+  CHECK(glm::dot(glm::cross(fly.right(), fly.forward()), glm::vec3(0, 1, 0)) > 0.0f);  // right-handed, +y up
+
+  // A point straight ahead at the centre column; after a left turn of d degrees it lies
+  // f·tan(d) pixels to the right of the centre, f = (h/2)/tan(fov/2).
+  const int w = 320, h = 180;
+  const glm::vec3 ahead = look.eye + 3000.0f * fly.forward();
+  CHECK(projectedColumn(fly.camera(), ahead, w, h) == Approx(160.0f).margin(0.01));
+  view::FlyCamera turned = fly;
+  turned.turn(5.0f, 0.0f);
+  const float f = 90.0f / std::tan(glm::radians(25.0f));
+  const float shift = projectedColumn(turned.camera(), ahead, w, h) - 160.0f;
+  CHECK(shift == Approx(f * std::tan(glm::radians(5.0f))).epsilon(0.02));
+}
+
+TEST_CASE("view: sun angles and direction agree both ways", "[view]") {
+  for (const glm::vec3 d : {glm::vec3(0.4f, 0.8f, 0.45f), glm::vec3(-0.3f, 0.2f, -0.9f), glm::vec3(0.0f, -1.0f, 0.001f)}) {
+    const view::SunAngles s = view::SunAngles::fromDirection(d);
+    CHECK(glm::length(s.direction() - glm::normalize(d)) < 1e-4f);
+  }
+  view::SunAngles s;
+  s.turn(0.0f, 80.0f);
+  CHECK(s.elevationDeg == 90.0f);  // clamped
+}
+
+TEST_CASE("view: controls change the state the loop renders", "[view]") {
+  view::ViewerState s;
+  s.lutSetCount = 2;
+  const float yaw = s.camera.yawDeg;
+  view::onKey(s, GLFW_KEY_LEFT, GLFW_PRESS, 0);
+  view::onKey(s, GLFW_KEY_LEFT, GLFW_REPEAT, 0);
+  CHECK(s.camera.yawDeg == Approx(yaw + 2 * view::kTurnStepDeg));
+  view::onKey(s, GLFW_KEY_LEFT, GLFW_RELEASE, 0);
+  CHECK(s.camera.yawDeg == Approx(yaw + 2 * view::kTurnStepDeg));
+  view::onKey(s, GLFW_KEY_B, GLFW_PRESS, 0);
+  CHECK(s.blend == render::BlendMode::Alpha);
+  view::onKey(s, GLFW_KEY_B, GLFW_REPEAT, 0);  // switches act once per press
+  CHECK(s.blend == render::BlendMode::Alpha);
+  view::onKey(s, GLFW_KEY_X, GLFW_PRESS, 0);
+  CHECK(s.terms == (render::kTermSingle | render::kTermAmbient));
+  view::onKey(s, GLFW_KEY_3, GLFW_PRESS, 0);
+  CHECK(s.quality == 2);
+  view::onKey(s, GLFW_KEY_N, GLFW_PRESS, 0);
+  view::onKey(s, GLFW_KEY_N, GLFW_PRESS, 0);
+  CHECK(s.lutSet == 0);  // cycles
+  view::onKey(s, GLFW_KEY_F12, GLFW_PRESS, 0);
+  CHECK(s.screenshots == 1);
+  CHECK_FALSE(s.quit);
+  view::onKey(s, GLFW_KEY_ESCAPE, GLFW_PRESS, 0);
+  CHECK(s.quit);
+
+  view::onScroll(s, 2.0);
+  CHECK(s.speed == Approx(300.0f * 1.25f * 1.25f));
+  view::onScroll(s, -1000.0);
+  CHECK(s.speed == 1.0f);
+
+  s.speed = 300.0f;
+  const glm::vec3 eye = s.camera.eye, forward = s.camera.forward();
+  view::HeldKeys keys;
+  keys.forward = keys.up = true;
+  view::advance(s, keys, 2.0);
+  CHECK(glm::length(s.camera.eye - (eye + 600.0f * forward + glm::vec3(0, 600, 0))) < 1e-2f);
+
+  const float pitch = s.camera.pitchDeg;
+  view::onDrag(s, 0.0, -10.0, false);  // drag up: look up
+  CHECK(s.camera.pitchDeg == Approx(pitch + 10.0f * view::kDragDegPerPixel));
+}
+
+TEST_CASE("view: camera paths round-trip through JSON and bad ones name the field", "[view]") {
+  scene::CameraPath path;
+  for (int i = 0; i < 3; ++i) {
+    scene::CameraPathFrame f;
+    f.seconds = 0.25 * i;
+    f.camera.eye = {10.0f * static_cast<float>(i), 600.0f, -3.5f};
+    f.camera.target = f.camera.eye + glm::vec3(0.0f, 0.1f, -1.0f);
+    f.camera.fovDeg = 40.0f + static_cast<float>(i);
+    f.sunDirection = glm::normalize(glm::vec3(0.3f, 0.9f, 0.1f * static_cast<float>(i)));
+    path.frames.push_back(f);
+  }
+  const scene::CameraPath back = scene::parseCameraPath(nlohmann::json::parse(scene::cameraPathText(path)), "p");
+  REQUIRE(back.frames.size() == 3);
+  for (std::size_t i = 0; i < 3; ++i) {
+    CHECK(back.frames[i].seconds == path.frames[i].seconds);
+    CHECK(back.frames[i].camera.eye == path.frames[i].camera.eye);
+    CHECK(back.frames[i].camera.target == path.frames[i].camera.target);
+    CHECK(back.frames[i].camera.fovDeg == path.frames[i].camera.fovDeg);
+    CHECK(glm::length(back.frames[i].sunDirection - path.frames[i].sunDirection) < 1e-6f);
+  }
+
+  const auto fails = [&](const std::function<void(nlohmann::json&)>& edit, const std::string& message) {
+    nlohmann::json j = scene::cameraPathToJson(path);
+    edit(j);
+    CHECK_THROWS_WITH(scene::parseCameraPath(j, "flight.json"), Contains(message));
+  };
+  fails([](nlohmann::json& j) { j["frames"][1]["eye"] = {1, 2}; }, "flight.json: frames[1].eye: expected 3 numbers");
+  fails([](nlohmann::json& j) { j["frames"][2]["seconds"] = 0.1; }, "frames[2].seconds: earlier than the frame before it");
+  fails([](nlohmann::json& j) { j["frames"][0]["target"] = j["frames"][0]["eye"]; }, "frames[0].target: equals the eye");
+  fails([](nlohmann::json& j) { j["frames"][0]["fov_deg"] = 180; }, "frames[0].fov_deg");
+  fails([](nlohmann::json& j) { j["frames"][0]["sun"] = {0, 0, 0}; }, "frames[0].sun");
+  fails([](nlohmann::json& j) { j["frames"][0]["eyes"] = 1; }, "frames[0].eyes: unknown field");
+  fails([](nlohmann::json& j) { j["frames"] = nlohmann::json::array(); }, "frames: expected an array of at least one frame");
+  fails([](nlohmann::json& j) { j["version"] = 2; }, "version: expected 1");
+  CHECK_THROWS_WITH(scene::readCameraPath("/nonexistent/path.json"), Contains("/nonexistent/path.json"));
+}
+
+TEST_CASE("view: LUT sets are found in a directory or its subdirectories; screenshots never overwrite", "[view]") {
+  test::TempDir dir;
+  CHECK_THROWS_AS(view::findLutSets(dir.path()), FileError);
+  for (const char* name : {"orders18", "converged", "notes"}) std::filesystem::create_directory(dir / name);
+  std::ofstream(dir / "orders18" / "manifest.json") << "{}";
+  std::ofstream(dir / "converged" / "manifest.json") << "{}";
+  const std::vector<std::filesystem::path> sets = view::findLutSets(dir.path());
+  REQUIRE(sets.size() == 2);
+  CHECK(sets[0].filename() == "converged");
+  CHECK(sets[1].filename() == "orders18");
+  CHECK(view::findLutSets(dir / "orders18").size() == 1);
+
+  std::ofstream(dir / "cloudlut_0000.png") << "x";
+  std::ofstream(dir / "cloudlut_0001.png") << "x";
+  int next = 0;
+  CHECK(view::nextScreenshotPath(dir.path(), next).filename() == "cloudlut_0002.png");
+  CHECK(next == 2);
+}
