@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 
@@ -15,6 +16,8 @@
 
 #include "core/Errors.h"
 #include "scene/CameraPath.h"
+#include "support/CliRunner.h"
+#include "support/RenderLuts.h"
 #include "support/TempDir.h"
 #include "view/FlyCamera.h"
 #include "view/Viewer.h"
@@ -44,7 +47,7 @@ float projectedColumn(const scene::Camera& camera, const glm::vec3& point, int w
 
 }  // namespace
 
-TEST_CASE("view: fly camera angles reproduce a look-at camera; turning left moves the picture right", "[view]") {
+TEST_CASE("view: fly camera angles reproduce a look-at camera, and turning left moves the picture right", "[view]") {
   scene::Camera look;
   look.eye = {100.0f, 600.0f, 50.0f};
   look.target = {-400.0f, 900.0f, -5000.0f};
@@ -157,7 +160,7 @@ TEST_CASE("view: camera paths round-trip through JSON and bad ones name the fiel
   CHECK_THROWS_WITH(scene::readCameraPath("/nonexistent/path.json"), Contains("/nonexistent/path.json"));
 }
 
-TEST_CASE("view: LUT sets are found in a directory or its subdirectories; screenshots never overwrite", "[view]") {
+TEST_CASE("view: LUT sets are found in a directory or its subdirectories, and screenshots never overwrite", "[view]") {
   test::TempDir dir;
   CHECK_THROWS_AS(view::findLutSets(dir.path()), FileError);
   for (const char* name : {"orders18", "converged", "notes"}) std::filesystem::create_directory(dir / name);
@@ -174,4 +177,52 @@ TEST_CASE("view: LUT sets are found in a directory or its subdirectories; screen
   int next = 0;
   CHECK(view::nextScreenshotPath(dir.path(), next).filename() == "cloudlut_0002.png");
   CHECK(next == 2);
+}
+
+TEST_CASE("render --path: each frame of a camera path is the render of its camera, and bad paths are refused",
+          "[view][cli]") {
+  test::TempDir tmp;
+  test::writeSyntheticLutSet(tmp / "luts");
+  scene::CameraPath path;
+  for (int i = 0; i < 2; ++i) {
+    scene::CameraPathFrame f;
+    f.seconds = 0.5 * i;
+    f.camera.eye = {0.0f, 600.0f, -200.0f * static_cast<float>(i)};
+    f.camera.target = f.camera.eye + glm::vec3(0.3f * static_cast<float>(i), 0.15f, -1.0f);
+    f.camera.fovDeg = 60.0f;
+    f.sunDirection = glm::normalize(glm::vec3(0.45f, 0.55f, -0.7f + 0.5f * static_cast<float>(i)));
+    path.frames.push_back(f);
+  }
+  std::ofstream(tmp / "flight.json") << scene::cameraPathText(path);
+  const std::string base = "render --luts '" + (tmp / "luts").string() + "' --width 64 --height 36 --quality low --quiet ";
+  const test::CliResult r = test::runCli(base + "--path '" + (tmp / "flight.json").string() + "' --out '" +
+                                         (tmp / "f.png").string() + "'");
+  REQUIRE(r.exitCode == 0);
+  for (int i = 0; i < 2; ++i) {
+    const scene::CameraPathFrame& f = path.frames[static_cast<std::size_t>(i)];
+    const auto v = [](const glm::vec3& x) {  // exact float round trip
+      char text[96];
+      std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", static_cast<double>(x.x), static_cast<double>(x.y),
+                    static_cast<double>(x.z));
+      return std::string(text);
+    };
+    const std::string single = (tmp / ("single" + std::to_string(i) + ".png")).string();
+    REQUIRE(test::runCli(base + "--eye=" + v(f.camera.eye) + " --target=" + v(f.camera.target) + " --fov 60 --sun=" +
+                         v(f.sunDirection) + " --out '" + single + "'").exitCode == 0);
+    const std::string framed = test::readFile(tmp / ("f_000" + std::to_string(i) + ".png"));
+    CHECK(!framed.empty());
+    CHECK(framed == test::readFile(single));
+  }
+  CHECK(test::readFile(tmp / "f_0000.png") != test::readFile(tmp / "f_0001.png"));
+
+  const test::CliResult tooMany = test::runCli(base + "--path '" + (tmp / "flight.json").string() + "' --frames 3 --out '" +
+                                               (tmp / "g.png").string() + "'");
+  CHECK(tooMany.exitCode == 2);
+  CHECK_THAT(tooMany.err, Contains("the path holds 2"));
+  std::ofstream(tmp / "bad.json") << R"({"format": "cloudlut camera path", "version": 1, "frames": [{"seconds": 0}]})";
+  const test::CliResult bad =
+      test::runCli(base + "--path '" + (tmp / "bad.json").string() + "' --out '" + (tmp / "h.png").string() + "'");
+  CHECK(bad.exitCode == 1);
+  CHECK_THAT(bad.err, Contains("bad.json: frames[0].eye: missing"));
+  CHECK_FALSE(std::filesystem::exists(tmp / "h_0000.png"));
 }
