@@ -111,12 +111,27 @@ TEST_CASE("view: controls change the state the loop renders", "[view]") {
   view::onScroll(s, -1000.0);
   CHECK(s.speed == 1.0f);
 
+  // W tapped for 0.2 s within a long frame, E held from 1.0 s on: at 2.0 s the camera has moved
+  // 0.2·speed forward and 1.0·speed up; E still held, the next 0.5 s move it 0.5·speed up.
   s.speed = 300.0f;
   const glm::vec3 eye = s.camera.eye, forward = s.camera.forward();
-  view::HeldKeys keys;
-  keys.forward = keys.up = true;
-  view::advance(s, keys, 2.0);
-  CHECK(glm::length(s.camera.eye - (eye + 600.0f * forward + glm::vec3(0, 600, 0))) < 1e-2f);
+  view::MotionKeys motion;
+  motion.onKey(GLFW_KEY_W, GLFW_PRESS, 0.3);
+  motion.onKey(GLFW_KEY_W, GLFW_REPEAT, 0.4);
+  motion.onKey(GLFW_KEY_W, GLFW_RELEASE, 0.5);
+  motion.onKey(GLFW_KEY_E, GLFW_PRESS, 1.0);
+  motion.onKey(GLFW_KEY_LEFT, GLFW_PRESS, 1.0);  // not a motion key
+  view::advance(s, motion.take(2.0));
+  CHECK(glm::length(s.camera.eye - (eye + 60.0f * forward + glm::vec3(0, 300, 0))) < 1e-2f);
+  const view::HeldSeconds next = motion.take(2.5);
+  CHECK(next.up == Approx(0.5));
+  CHECK(next.forward == 0.0);
+  motion.onKey(GLFW_KEY_E, GLFW_RELEASE, 2.7);
+  CHECK(motion.take(3.0).up == Approx(0.2));
+  CHECK(motion.take(4.0).up == 0.0);
+  motion.onKey(GLFW_KEY_A, GLFW_PRESS, 4.5);  // a tap polled as one instant
+  motion.onKey(GLFW_KEY_A, GLFW_RELEASE, 4.5);
+  CHECK(motion.take(5.0).left == Approx(view::kTapSeconds));
 
   const float pitch = s.camera.pitchDeg;
   view::onDrag(s, 0.0, -10.0, false);  // drag up: look up

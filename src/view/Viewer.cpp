@@ -95,6 +95,7 @@ std::vector<std::string> overlayLines(const ViewerState& s, const render::Render
 // The window's callbacks reach the state through the window's user pointer.
 struct InputTarget {
   ViewerState* state;
+  MotionKeys motion;
   double lastX = 0, lastY = 0;
   bool dragging = false;
 };
@@ -102,7 +103,9 @@ struct InputTarget {
 void installCallbacks(GLFWwindow* window, InputTarget& target) {
   glfwSetWindowUserPointer(window, &target);
   glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
-    onKey(*static_cast<InputTarget*>(glfwGetWindowUserPointer(w))->state, key, action, mods);
+    InputTarget& t = *static_cast<InputTarget*>(glfwGetWindowUserPointer(w));
+    onKey(*t.state, key, action, mods);
+    t.motion.onKey(key, action, glfwGetTime());
   });
   glfwSetScrollCallback(window, [](GLFWwindow* w, double, double y) {
     onScroll(*static_cast<InputTarget*>(glfwGetWindowUserPointer(w))->state, y);
@@ -119,18 +122,6 @@ void installCallbacks(GLFWwindow* window, InputTarget& target) {
     t.lastX = x;
     t.lastY = y;
   });
-}
-
-HeldKeys heldKeys(GLFWwindow* w) {
-  const auto down = [w](int key) { return glfwGetKey(w, key) == GLFW_PRESS; };
-  HeldKeys k;
-  k.forward = down(GLFW_KEY_W);
-  k.back = down(GLFW_KEY_S);
-  k.left = down(GLFW_KEY_A);
-  k.right = down(GLFW_KEY_D);
-  k.down = down(GLFW_KEY_Q);
-  k.up = down(GLFW_KEY_E);
-  return k;
 }
 
 }  // namespace
@@ -156,20 +147,18 @@ int runViewer(const ViewerOptions& o) {
   TextOverlay overlay(gl, display);
   std::size_t loadedSet = o.lutSets.size();
   std::unique_ptr<render::Renderer> renderer;
-  InputTarget input{&state};
+  InputTarget input{&state, {}};
   installCallbacks(window.window(), input);
 
   scene::CameraPath path;
   StageTotals totals;
   int screenshotNumber = 0;
   std::optional<std::chrono::steady_clock::time_point> firstFrame;  // the recorded times count from it
-  auto previous = std::chrono::steady_clock::now();
   render::RenderSettings settings = o.settings;
   while (!state.quit && !window.closeRequested()) {
     glfwPollEvents();
     const auto frameStart = std::chrono::steady_clock::now();
-    advance(state, heldKeys(window.window()), std::min(std::chrono::duration<double>(frameStart - previous).count(), 0.5));
-    previous = frameStart;
+    advance(state, input.motion.take(glfwGetTime()));
     if (loadedSet != state.lutSet) {  // one renderer at a time, rebuilt for another table set
       renderer.reset();
       const io::LutSet luts = io::readLutSet(o.lutSets[state.lutSet]);

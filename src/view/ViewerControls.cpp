@@ -59,10 +59,48 @@ void onDrag(ViewerState& s, double dx, double dy, bool moveSun) {
     s.camera.turn(yaw, pitch);
 }
 
-void advance(ViewerState& s, const HeldKeys& k, double seconds) {
-  const float d = s.speed * static_cast<float>(seconds);
-  const auto axis = [](bool plus, bool minus) { return static_cast<float>(plus) - static_cast<float>(minus); };
-  s.camera.move(d * axis(k.forward, k.back), d * axis(k.up, k.down), d * axis(k.right, k.left));
+namespace {
+
+int motionIndex(int key) {
+  switch (key) {
+    case GLFW_KEY_W: return 0;
+    case GLFW_KEY_S: return 1;
+    case GLFW_KEY_A: return 2;
+    case GLFW_KEY_D: return 3;
+    case GLFW_KEY_Q: return 4;
+    case GLFW_KEY_E: return 5;
+    default: return -1;
+  }
+}
+
+}  // namespace
+
+void MotionKeys::onKey(int key, int action, double seconds) {
+  const int i = motionIndex(key);
+  if (i < 0) return;
+  if (action == GLFW_PRESS && pressedAt_[i] < 0) pressedAt_[i] = seconds;
+  if (action == GLFW_RELEASE && pressedAt_[i] >= 0) {
+    held_[i] += std::max(seconds - pressedAt_[i], kTapSeconds);
+    pressedAt_[i] = -1;
+  }
+}
+
+HeldSeconds MotionKeys::take(double seconds) {
+  double t[kKeys];
+  for (int i = 0; i < kKeys; ++i) {
+    t[i] = held_[i];
+    if (pressedAt_[i] >= 0) {  // still held: count up to now, carry on from now
+      t[i] += std::max(seconds - pressedAt_[i], 0.0);
+      pressedAt_[i] = seconds;
+    }
+    held_[i] = 0;
+  }
+  return {t[0], t[1], t[2], t[3], t[4], t[5]};
+}
+
+void advance(ViewerState& s, const HeldSeconds& h) {
+  const auto d = [&](double plus, double minus) { return s.speed * static_cast<float>(plus - minus); };
+  s.camera.move(d(h.forward, h.back), d(h.up, h.down), d(h.right, h.left));
 }
 
 std::vector<std::string> controlsHelp() {
