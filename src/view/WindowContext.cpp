@@ -1,6 +1,5 @@
-// GLFW implementation of the viewer's window. The only file that includes <GLFW/glfw3.h>
-// without GLFW_INCLUDE_NONE's companion (the viewer's input handling includes it for the key
-// codes only).
+// GLFW implementation of the viewer's window and its context. GLFW is included without any GL
+// header of its own (GLFW_INCLUDE_NONE); the entry points come from <GL/glcorearb.h>.
 #include "view/WindowContext.h"
 
 #define GLFW_INCLUDE_NONE
