@@ -3,7 +3,8 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config libopenexr-dev libglm-dev libtbb-dev catch2
           libcxxopts-dev nlohmann-json3-dev libeigen3-dev libosmesa6-dev libgl-dev libstb-dev
-          python3-matplotlib clang libclang-rt-14-dev)
+          python3-matplotlib clang libclang-rt-14-dev
+          libglfw3-dev xvfb xdotool)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,7 +1,8 @@
 // `cloudlut render`: renders a particle scene (--particles FILE) or a procedural cloudscape
 // (--scene PRESET|FILE; the default cloudscape without either) from a LUT directory with OpenGL
 // 4.5 (headless, OSMesa) into a PNG (tone-mapped sRGB) or an EXR (linear radiance, alpha,
-// distance); --frames N writes a numbered sequence along a slow camera path.
+// distance); --frames N writes a numbered sequence along a slow camera path, --path FILE the frames
+// of a recorded flight (scene/CameraPath.h).
 // Everything is validated before the tables are read or anything is rendered; the image is
 // written through a temporary file and a rename.
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "cli/Command.h"
@@ -20,6 +22,7 @@
 #include "render/GlContext.h"
 #include "render/ImageWriters.h"
 #include "render/Renderer.h"
+#include "scene/CameraPath.h"
 #include "scene/Scene.h"
 
 namespace cloudlut::cli {
@@ -54,6 +57,7 @@ int runRender(int argc, char** argv) {
     ("blend", "alpha or volume (default: volume for cloudscapes, alpha for --particles)", cxxopts::value<std::string>())
     ("downscale", "render the particles at 1/N resolution (1, 2, 4) and upscale (bilateral)", cxxopts::value<int>()->default_value("1"))
     ("frames", "write N frames OUT_0000.png ... along a slow forward move with a yaw", cxxopts::value<int>()->default_value("1"))
+    ("path", "render the frames of a camera path (cloudlut view --record; docs/SCENE_FORMAT.md) as OUT_0000.png ...; --frames N: its first N", cxxopts::value<std::string>())
     ("speed", "--frames: metres per frame", cxxopts::value<double>()->default_value("40"))
     ("yaw", "--frames: degrees of yaw per frame", cxxopts::value<double>()->default_value("0.2"))
     ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel", cxxopts::value<int>()->default_value("16"))
@@ -74,7 +78,6 @@ int runRender(int argc, char** argv) {
   for (const char* required : {"luts", "out"})
     if (!args.count(required)) throw UsageError(std::string("missing --") + required);
   const bool particles = args.count("particles") > 0;
-  if (particles && args.count("scene")) throw UsageError("give either --particles or --scene, not both");
 
   const fs::path out = args["out"].as<std::string>();
   const std::string ext = lowerExtension(out);
@@ -83,8 +86,6 @@ int runRender(int argc, char** argv) {
   const long long width = args["width"].as<long long>(), height = args["height"].as<long long>();
   render::checkImageSize(width, height);
   const double exposure = requirePositive(args["exposure"].as<double>(), "exposure");
-
-  const scene::ViewSettings overrides = parseViewOverrides(args);
 
   render::RenderSettings settings;
   settings.width = static_cast<int>(width);
@@ -102,25 +103,25 @@ int runRender(int argc, char** argv) {
   settings.lighting = render::parseLighting(args["lighting"].as<std::string>());
   settings.sunlight = args.count("sunlight") ? render::parseSunlight(args["sunlight"].as<std::string>())
                                              : render::defaultSunlight(settings.lighting);
-  const int frames = args["frames"].as<int>();
+  int frames = args["frames"].as<int>();
   if (frames < 1 || frames > 100000) throw UsageError("--frames: expected 1 to 100000");
   const double speed = args["speed"].as<double>(), yaw = args["yaw"].as<double>();
   if (!std::isfinite(speed) || !std::isfinite(yaw)) throw UsageError("--speed/--yaw: expected finite numbers");
   const scene::QualityPreset quality = scene::qualityPreset(args["quality"].as<std::string>());
 
-  // The scene: explicit particles, or a cloudscape preset / file (the default one embedded).
-  scene::Scene scene;
-  scene::CloudscapeScene cloudscape;
-  if (particles) {
-    scene = scene::readScene(args["particles"].as<std::string>());
-  } else {
-    cloudscape = scene::loadCloudscape(args.count("scene") ? args["scene"].as<std::string>()
-                                                            : std::string(scene::kDefaultCloudscape));
-    scene.view = cloudscape.view;
-    if (!scene.view.target && !overrides.target) scene.view.target = glm::vec3(0.0f, 1500.0f, -6000.0f);
-    if (!scene.view.eye && !overrides.eye) scene.view.eye = glm::vec3(0.0f, 600.0f, 0.0f);
+  const DrawnScene drawn = loadDrawnScene(args);
+  const scene::Scene& scene = drawn.scene;
+  const scene::CloudscapeScene& cloudscape = drawn.cloudscape;
+  settings.view = drawn.view;
+  // --path FILE: the cameras and suns of a recorded flight (cloudlut view --record), one frame each.
+  std::optional<scene::CameraPath> path;
+  if (args.count("path")) {
+    path = scene::readCameraPath(args["path"].as<std::string>());
+    if (args["frames"].count() == 0) frames = static_cast<int>(path->frames.size());
+    if (static_cast<std::size_t>(frames) > path->frames.size())
+      throw UsageError("--frames: " + std::to_string(frames) + " frames asked, the path holds " +
+                       std::to_string(path->frames.size()));
   }
-  settings.view = scene::resolveView(scene, overrides);
   const io::LutSet luts = io::readLutSet(args["luts"].as<std::string>());
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -129,13 +130,18 @@ int runRender(int argc, char** argv) {
   const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const scene::Camera start = settings.view.camera;
   for (int frame = 0; frame < frames; ++frame) {
-    settings.view.camera = scene::cameraOnPath(start, frame, static_cast<float>(speed), static_cast<float>(yaw));
+    if (path) {
+      settings.view.camera = path->frames[static_cast<std::size_t>(frame)].camera;
+      settings.view.lighting.sunDirection = path->frames[static_cast<std::size_t>(frame)].sunDirection;
+    } else {
+      settings.view.camera = scene::cameraOnPath(start, frame, static_cast<float>(speed), static_cast<float>(yaw));
+    }
     render::RenderStats stats;
     const render::Image image = particles ? renderer.render(scene.particles, settings, &stats)
                                           : renderer.renderCloudscape(cloudscape.cloud, quality, settings, &stats);
     if (const std::size_t bad = image.nonFiniteCount())
       throw std::runtime_error("the render holds " + std::to_string(bad) + " non-finite values (tables out of range?)");
-    const fs::path file = frames > 1 ? framePath(out, frame) : out;
+    const fs::path file = frames > 1 || path ? framePath(out, frame) : out;
     if (ext == ".png") render::writePng(image, file, settings.view.lighting.skyColor, static_cast<float>(exposure));
     else render::writeExr(image, file);
     if (!args.count("quiet"))

@@ -11,6 +11,24 @@
 
 namespace cloudlut::cli {
 
+DrawnScene loadDrawnScene(const cxxopts::ParseResult& args) {
+  DrawnScene d;
+  d.particles = args.count("particles") > 0;
+  if (d.particles && args.count("scene")) throw UsageError("give either --particles or --scene, not both");
+  const scene::ViewSettings overrides = parseViewOverrides(args);
+  if (d.particles) {
+    d.scene = scene::readScene(args["particles"].as<std::string>());
+  } else {
+    d.cloudscape = scene::loadCloudscape(args.count("scene") ? args["scene"].as<std::string>()
+                                                              : std::string(scene::kDefaultCloudscape));
+    d.scene.view = d.cloudscape.view;
+    if (!d.scene.view.target && !overrides.target) d.scene.view.target = glm::vec3(0.0f, 1500.0f, -6000.0f);
+    if (!d.scene.view.eye && !overrides.eye) d.scene.view.eye = glm::vec3(0.0f, 600.0f, 0.0f);
+  }
+  d.view = scene::resolveView(d.scene, overrides);
+  return d;
+}
+
 void addViewOptions(cxxopts::Options& options) {
   options.add_options()
     ("eye", "camera position x,y,z (overrides the scene)", cxxopts::value<std::string>())

@@ -6,6 +6,7 @@
 #include <cxxopts.hpp>
 
 #include "core/Medium.h"
+#include "scene/Cloudscape.h"
 #include "scene/Scene.h"
 
 namespace cloudlut::cli {
@@ -13,6 +14,18 @@ namespace cloudlut::cli {
 // --eye, --target, --up, --fov, --sun, --sun-color, --sky-color.
 void addViewOptions(cxxopts::Options& options);
 scene::ViewSettings parseViewOverrides(const cxxopts::ParseResult& args);
+
+// What `render` and `view` draw: the particles of --particles FILE, or the cloudscape of
+// --scene PRESET|FILE (the default cloudscape without either), and the view resolved from the
+// defaults, the file and the command line (a cloudscape's default camera: eye at 600 m looking
+// toward a point 1.5 km up, 6 km ahead). UsageError for both options at once.
+struct DrawnScene {
+  bool particles = false;
+  scene::Scene scene;
+  scene::CloudscapeScene cloudscape;
+  scene::View view;
+};
+DrawnScene loadDrawnScene(const cxxopts::ParseResult& args);
 
 // --density-model, --model-seed, --extinction, --radius and the phase options (cli/Options.h),
 // each overriding the LUT set's value (io/LutSetMedium.h) when --luts is given, else the
