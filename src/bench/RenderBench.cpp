@@ -121,12 +121,30 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
         report.add(BenchRow{"render", method, stage, variant, r, "", particles, 0, seconds, -1, -1, -1, -1, n});
       };
       row("generation", st.generateSeconds, res, note);
-      row("occlusion", st.occlusionSeconds, res, "64x64 light tiles, xi 0.05, smoothing");
+      row("sunlight", st.occlusionSeconds, res, "sun volume (cloud lighting, docs/LIGHTING.md)");
       row("shading+blending", st.renderSeconds, res,
           blend == render::BlendMode::Volume ? "draw + resolve (resolve " +
                                                    std::to_string(static_cast<int>(1e3 * st.resolveSeconds)) + " ms)"
                                              : "draw (GPU bitonic sort is in generation)");
       row("total", total, res, "incl. read-back " + std::to_string(static_cast<int>(1e3 * st.readbackSeconds)) + " ms");
+      // The seed's lighting (per-particle occlusion, no sun volume), in the same run.
+      {
+        render::RenderSettings seed = s;
+        seed.lighting = render::LightingModel::Seed;
+        seed.sunlight = render::defaultSunlight(seed.lighting);
+        render::RenderStats ss;
+        const auto ts = std::chrono::steady_clock::now();
+        renderer.renderCloudscape(scene.cloud, q, seed, &ss);
+        const double totalSeed = std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
+        const auto seedRow = [&](const std::string& stage, double seconds, const std::string& n) {
+          report.add(BenchRow{"render", method + "-seed", stage, variant, res, "", particles, 0, seconds, -1, -1, -1, -1, n});
+        };
+        char ratio[96];
+        std::snprintf(ratio, sizeof ratio, "seed lighting; cloud/seed total time %.2f", total / std::max(totalSeed, 1e-9));
+        seedRow("sunlight", ss.occlusionSeconds, "64x64 light tiles, xi 0.05, smoothing");
+        seedRow("shading+blending", ss.renderSeconds, "seed lighting");
+        seedRow("total", totalSeed, ratio);
+      }
       // Half-resolution particles + bilateral upscale (the seed's setting).
       render::RenderSettings half = s;
       half.downscale = 2;
@@ -135,7 +153,7 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
       renderer.renderCloudscape(scene.cloud, q, half, &sh);
       const double totalHalf = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
       row("shading+blending", sh.renderSeconds, res + "/2", "particles at half resolution");
-      row("upscale", sh.upscaleSeconds, res + "/2", "bilateral (depth-aware), CPU");
+      row("upscale", sh.upscaleSeconds, res + "/2", "bilateral (depth-aware), compute shader");
       row("total", totalHalf, res + "/2", "");
 
       // Temporal stability: a slow forward move with a slight yaw.
