@@ -9,6 +9,7 @@
 
 #include "cli/Command.h"
 #include "cli/Options.h"
+#include "io/LutIo.h"
 #include "io/QueryCsv.h"
 #include "cli/TtyProgress.h"
 #include "core/Defaults.h"
@@ -59,8 +60,8 @@ int runReference(int argc, char** argv) {
 
   const long long paths = args["paths"].as<long long>();
   if (paths < 2) throw UsageError("--paths must be at least 2");
-  const double extinction = requirePositive(args["extinction"].as<double>(), "extinction");
-  const double radius = requirePositive(args["radius"].as<double>(), "radius");
+  const double extinction = args["extinction"].as<double>(), radius = args["radius"].as<double>();
+  checkExtinctionRadius(extinction, radius);
   reference::SphereMcSettings st;
   st.paths = paths;
   st.seed = args["seed"].as<unsigned long long>();
@@ -92,10 +93,7 @@ int runReference(int argc, char** argv) {
   }
   if (args.count("out")) {
     const std::string path = args["out"].as<std::string>();
-    std::ofstream f(path, std::ios::binary);
-    if (!f) throw FileError(path, "cannot open for writing");
-    f << out.str();
-    if (!f) throw FileError(path, "write failed");
+    io::writeFileAtomically(path, out.str());
   } else {
     std::fwrite(out.str().data(), 1, out.str().size(), stdout);
   }

@@ -67,8 +67,9 @@ Medium parseMedium(const cxxopts::ParseResult& args) {
     medium.model = *model;
   }
   if (args.count("model-seed")) medium.seed = args["model-seed"].as<unsigned long long>();
-  if (args.count("extinction")) medium.extinction = requirePositive(args["extinction"].as<double>(), "extinction");
-  if (args.count("radius")) medium.radius = requirePositive(args["radius"].as<double>(), "radius");
+  if (args.count("extinction")) medium.extinction = args["extinction"].as<double>();
+  if (args.count("radius")) medium.radius = args["radius"].as<double>();
+  checkExtinctionRadius(medium.extinction, medium.radius);
   if (const std::optional<PhasePair> phases = parsePhaseOptions(args)) {
     medium.first = phases->first;
     medium.later = phases->later;

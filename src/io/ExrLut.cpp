@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/Errors.h"
+#include "io/ExrBudget.h"
 #include "io/Fnv1a.h"
 #include "io/LutReaders.h"
 #include "io/MemoryStreams.h"
@@ -328,6 +329,9 @@ LoadedTable decodeExr(const std::filesystem::path& path, const std::string& byte
   if (description.is_discarded() || !description.is_object())
     throw FileError(name, "corrupt \"cloudlut\" attribute (not a JSON object)");
 
+  // the pixels the header claims must fit in the file (io/ExrBudget.h) before the table and its
+  // atlas are allocated: a 26 KB file must not claim a 128^4 table
+  checkExrPixelBudget(name, header, bytes.size(), 4, static_cast<std::uint64_t>(kMaxAtlasPixels) * 4);
   Table4D table = tableFromDescription(description, path);  // checks the size it claims
   const auto d = table.dims();
   const int C = table.channelCount();

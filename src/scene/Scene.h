@@ -73,10 +73,15 @@ struct View {
   Lighting lighting;
 };
 
+// The largest eye–target distance, and extent of particles framed by default, m: the renderers
+// work in float (a 24-bit mantissa leaves 60 m steps at 1e9 m).
+inline constexpr double kMaxSceneDistance = 1e9;
+
 // Defaults ← scene file ← command line, field by field. Without an eye or target the camera
 // frames the particles' bounding sphere (target at its centre, eye above and behind it, on
-// +z). Throws UsageError for an unusable combination (eye = target, up parallel to the view
-// direction, zero sun direction).
+// +z). Throws UsageError for an unusable combination (eye = target relative to their magnitude,
+// eye and target farther apart than kMaxSceneDistance, up parallel to the view direction, zero
+// sun direction); the checks run in double, so no overflow is mistaken for one of them.
 View resolveView(const Scene& scene, const ViewSettings& commandLine);
 
 // The pinhole camera of an image: ray directions and the matching OpenGL matrices.
