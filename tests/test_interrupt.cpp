@@ -1,4 +1,5 @@
-// `kill -9` during a bake leaves every final file name either absent or complete.
+// `kill -9` during a bake leaves every final file name either absent or complete (the set's
+// replacement as a whole, and kills by SIGTERM and SIGINT: test_hostile_files.cpp, fault 7).
 // The bake is killed at moments chosen while it is writing (a temporary file exists), when the
 // outcome is most at risk, and at a few points during the computation.
 #include <catch2/catch.hpp>
@@ -33,10 +34,17 @@ pid_t startBake(const fs::path& out) {
   return pid;
 }
 
-bool tempFileExists(const fs::path& dir) {
+// A temporary file in the bake's staging directory beside `out` (".NAME.baking.PID",
+// io/LutSetTransaction.h), where every file of the new set is written.
+bool tempFileExists(const fs::path& out) {
   std::error_code ec;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-    if (it->path().filename().string().find(".tmp") != std::string::npos) return true;
+  const std::string prefix = "." + out.filename().string() + ".baking.";
+  for (fs::directory_iterator it(out.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().filename().string().rfind(prefix, 0) != 0) continue;
+    std::error_code inner;
+    for (fs::directory_iterator f(it->path(), inner), fend; !inner && f != fend; f.increment(inner))
+      if (f->path().filename().string().find(".tmp") != std::string::npos) return true;
+  }
   return false;
 }
 

@@ -49,8 +49,8 @@ void prepareOutputDirectory(const fs::path& dir) {
   if (normal.filename().empty()) normal = normal.parent_path();  // "out/luts/"
   const fs::path parent = normal.parent_path();
   fs::create_directories(parent, ec);
-  if (ec || !fs::is_directory(parent)) throw UsageError("cannot create directory '" + parent.string() + "' for --out");
-  if (access(parent.c_str(), W_OK) != 0) throw UsageError("--out: directory '" + parent.string() + "' is not writable");
+  if (ec || !fs::is_directory(parent)) throw UsageError("--out: cannot create the output directory's parent '" + parent.string() + "'");
+  if (access(parent.c_str(), W_OK) != 0) throw UsageError("--out: the output directory's parent '" + parent.string() + "' is not writable");
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw UsageError("--out: '" + dir.string() + "' is not a directory");
 }
 

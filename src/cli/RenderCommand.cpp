@@ -114,6 +114,7 @@ int runRender(int argc, char** argv) {
   scene::CloudscapeScene cloudscape;
   if (particles) {
     scene = scene::readScene(args["particles"].as<std::string>());
+    scene::checkRenderParticleCount(scene.particles.size(), args["particles"].as<std::string>());
   } else {
     cloudscape = scene::loadCloudscape(args.count("scene") ? args["scene"].as<std::string>()
                                                             : std::string(scene::kDefaultCloudscape));

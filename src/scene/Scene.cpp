@@ -5,6 +5,7 @@
 #include <fstream>
 #include <limits>
 #include <set>
+#include <utility>
 #include <sstream>
 
 #include <glm/geometric.hpp>
@@ -211,6 +212,13 @@ Scene readScene(const std::filesystem::path& path) {
   return parseScene(document, path.string());
 }
 
+void checkRenderParticleCount(std::size_t count, const std::string& source) {
+  if (count > kMaxRenderParticles)
+    throw UsageError(source + ": " + std::to_string(count) + " particles, more than the " +
+                     std::to_string(kMaxRenderParticles) +
+                     " one render takes (the occlusion pass grows about as N^2.8); split the scene");
+}
+
 View resolveView(const Scene& scene, const ViewSettings& commandLine) {
   const auto pick = [](const auto& cli, const auto& file, const auto& fallback) {
     return cli ? *cli : file ? *file : fallback;
@@ -235,15 +243,21 @@ View resolveView(const Scene& scene, const ViewSettings& commandLine) {
     centre = 0.5f * (lo + hi);
     radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
   }
-  if (!scene.particles.empty() && !(glm::length(glm::dvec3(hi) - glm::dvec3(lo)) <= kMaxSceneDistance) &&
-      !(commandLine.eye || f.eye) )
-    throw UsageError("camera: the particles span more than 1e9 m, beyond the float range the renderers work in; give camera.eye/--eye and camera.target/--target");
   view.camera.target = pick(commandLine.target, f.target, centre);
   const float distance = 1.1f * radius / std::sin(0.5f * glm::radians(view.camera.fovDeg));
   view.camera.eye = pick(commandLine.eye, f.eye,
                          view.camera.target + distance * glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f)));
   // In double: a float length overflows near 1e19 and underflows near 1e-19.
   const glm::dvec3 eye(view.camera.eye), target(view.camera.target), up(view.camera.up);
+  for (const auto& [point, name] : {std::pair{eye, "eye"}, std::pair{target, "target (the particles' centre unless given)"}})
+    if (!(glm::length(point) <= kMaxSceneDistance)) {
+      char message[256];
+      std::snprintf(message, sizeof message,
+                    "camera: the %s lies %.3g m from the origin, more than %.0e m (the float range the renderers work "
+                    "in; camera.eye/camera.target or --eye/--target)",
+                    name, glm::length(point), kMaxSceneDistance);
+      throw UsageError(message);
+    }
   const double separation = glm::length(target - eye);
   if (!(separation <= kMaxSceneDistance)) {
     char message[224];
