@@ -49,9 +49,24 @@ std::string fileErrorOf(const std::function<void()>& f) {
   return {};
 }
 
+// Forks and execs the re-bake. SIGTERM and SIGINT stay blocked across the fork until the child
+// has dropped the test framework's handlers, so a signal that arrives before exec kills it by the
+// default action instead of running the parent's handler in the child.
 pid_t startRebake(const fs::path& out) {
+  sigset_t block, previous;
+  sigemptyset(&block);
+  sigaddset(&block, SIGTERM);
+  sigaddset(&block, SIGINT);
+  sigprocmask(SIG_BLOCK, &block, &previous);
   const pid_t pid = fork();
-  if (pid == 0) {
+  if (pid != 0) {
+    sigprocmask(SIG_SETMASK, &previous, nullptr);
+    return pid;
+  }
+  {
+    signal(SIGTERM, SIG_DFL);
+    signal(SIGINT, SIG_DFL);
+    sigprocmask(SIG_SETMASK, &previous, nullptr);
     const std::string o = out.string();
     execl(CLOUDLUT_EXE, CLOUDLUT_EXE, "bake", "--tables", "optical-depth", "--res-od", "32,16,32,16", "--precision",
           "float", "--format", "both", "--quiet", "--out", o.c_str(), static_cast<char*>(nullptr));

@@ -104,6 +104,11 @@ TEST_CASE("faults 3, 10: extinction beyond the rules is bad usage for every verb
     CHECK(bake.exitCode == 2);
   }
   CHECK(runCli("reference scene" + scene + " --out '" + (tmp / "r.exr").string() + "' --radius 1e308").exitCode == 2);
+  // the sphere's density comes from the CSV: a row too thick to trace names the file and the row
+  writeFile(tmp / "thick.csv", "sx,sy,sz,vx,vy,vz,lx,ly,lz,density\n0,0,1,0,0,-1,0,1,0,1e30\n");
+  const CliResult thick = runCli("reference sphere --paths 2 --csv '" + (tmp / "thick.csv").string() + "'");
+  CHECK(thick.exitCode == 1);
+  CHECK(thick.err.find("thick.csv: row '0,0,1,0,0,-1,0,1,0,1e30'") != std::string::npos);
 }
 
 TEST_CASE("fault 3: reference scene stops at a time limit and refuses particles too thick to trace", "[cli][hostile]") {

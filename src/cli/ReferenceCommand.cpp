@@ -14,6 +14,7 @@
 #include "cli/TtyProgress.h"
 #include "core/Defaults.h"
 #include "core/Errors.h"
+#include "reference/ScenePathTracer.h"
 #include "reference/SphereMonteCarlo.h"
 
 namespace cloudlut::cli {
@@ -76,8 +77,13 @@ int runReference(int argc, char** argv) {
   for (const io::QueryRow& r : csv.rows) {
     if (glm::dot(r.S, r.v) >= 0.0f)
       throw FileError(args["csv"].as<std::string>(), "row '" + r.text + "': v must point into the sphere (v·S < 0)");
-    queries.push_back({glm::dvec3(r.S), glm::dvec3(r.v), glm::dvec3(r.l),
-                       extinction * radius * static_cast<double>(r.density)});
+    const double tau = extinction * radius * static_cast<double>(r.density);
+    if (!(tau <= reference::kMaxParticleOpticalRadius))  // paths of about tau^2 events each
+      throw FileError(args["csv"].as<std::string>(), "row '" + r.text + "': density x extinction x radius = " +
+                                                         std::to_string(tau) + ", more than the " +
+                                                         std::to_string(static_cast<int>(reference::kMaxParticleOpticalRadius)) +
+                                                         " the path tracer can follow");
+    queries.push_back({glm::dvec3(r.S), glm::dvec3(r.v), glm::dvec3(r.l), tau});
   }
   const ProgressFn progress = makeTtyProgress(args.count("quiet") > 0);
   const auto est = reference::estimateSphereRadiance(queries, st, progress);
