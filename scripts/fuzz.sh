@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-20}
-targets=(fuzz_binary_lut fuzz_exr_lut fuzz_manifest fuzz_scene fuzz_query_csv)
+targets=(fuzz_binary_lut fuzz_exr_lut fuzz_exr_image fuzz_table_description fuzz_manifest fuzz_scene fuzz_query_csv)
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCLOUDLUT_FUZZ=ON >/dev/null
 cmake --build build-fuzz -j"$(nproc)" --target "${targets[@]}"
 mkdir -p out/fuzz/crashes

@@ -56,7 +56,7 @@ TEST_CASE("Phase JSON keeps the tables' {kind, param} form", "[defaults][phase]"
   CHECK(phaseFromJson(j, "f", "first_phase") == Phase{PhaseKind::HenyeyGreenstein, 0.7f});
   CHECK(phaseFromJson({{"kind", 3}, {"param", 10}}, "f", "p") == Phase{PhaseKind::JendersieDeon, 10.0f});
   CHECK_THROWS_WITH(phaseFromJson({{"kind", 7}, {"param", 0.5}}, "m.json", "single_scattering.first_phase"),
-                    "m.json: single_scattering.first_phase: unknown phase kind 7");
+                    "m.json: single_scattering.first_phase: unknown phase kind 7 (0 isotropic, 1 Henyey-Greenstein, 2 Cornette-Shanks, 3 Jendersie-d'Eon)");
   CHECK_THROWS_AS(phaseFromJson({{"kind", "hg"}, {"param", 0.5}}, "m.json", "p"), FileError);
   CHECK_THROWS_AS(phaseFromJson(nlohmann::json::array(), "m.json", "p"), FileError);
   CHECK(describePhase({PhaseKind::CornetteShanks, 0.7f}) == "cs g=0.7");

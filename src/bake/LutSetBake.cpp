@@ -6,6 +6,7 @@
 
 #include "core/Defaults.h"
 #include "core/ReferenceParticle.h"
+#include "io/LutSetTransaction.h"
 
 namespace cloudlut::bake {
 
@@ -35,6 +36,9 @@ void appendf(std::string& out, const char* format, ...) {
 }  // namespace
 
 nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const std::function<void()>& stageDone) {
+  // Everything is written into a staging directory and swapped in at the end (io/LutSetTransaction.h).
+  io::LutSetTransaction transaction(plan.out);
+  const std::filesystem::path& dir = transaction.stagingDir();
   nlohmann::json entries = nlohmann::json::object();
   nlohmann::json timings = nlohmann::json::object();
   nlohmann::json forScene = nlohmann::json::object();
@@ -55,7 +59,7 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
     forScene["optical_depth_bake_s"] = secondsSince(tBake);
     timings["optical_depth_s"] = secondsSince(t0);
     done(stageDone);
-    entries[table.name()] = io::writeTableFiles(table, plan.precision, plan.out, plan.formats);
+    entries[table.name()] = io::writeTableFiles(table, plan.precision, dir, plan.formats);
   }
   nlohmann::json scatteringReport;
   if (plan.scattering() && plan.forScene) {
@@ -75,7 +79,7 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
     // Radiance is not confined to [0, 1]: 8-bit storage is for the optical-depth table only.
     const io::SampleType type = plan.precision == io::SampleType::U8 ? io::SampleType::Half : plan.precision;
     for (const std::optional<Table4D>* t : {&result.single, &result.multiple})
-      if (*t) entries[(*t)->name()] = io::writeTableFiles(**t, type, plan.out, plan.formats);
+      if (*t) entries[(*t)->name()] = io::writeTableFiles(**t, type, dir, plan.formats);
     scatteringReport = result.report;
   }
 
@@ -95,7 +99,9 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
     forScene["tolerance"] = plan.tolerance;
     manifest["for_scene"] = forScene;
   }
-  io::writeManifest(plan.out, manifest);
+  io::writeManifest(dir, manifest);
+  for (const std::string& warning : transaction.commit())
+    std::fprintf(stderr, "cloudlut bake: warning: %s\n", warning.c_str());
   return manifest;
 }
 

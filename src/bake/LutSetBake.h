@@ -1,8 +1,9 @@
 #pragma once
 // A LUT set baked into a directory, what `cloudlut bake` runs: the optical-depth table of the
 // reference particle and the scattering tables of the homogeneous sphere, each written in the
-// chosen formats (io/ManifestSchema.h), then manifest.json last, so that a directory with a
-// manifest holds every table it lists. With a scene (--for-scene) the resolutions are chosen
+// chosen formats (io/ManifestSchema.h), then manifest.json last, into a staging directory that
+// replaces the LUT directory in one step at the end (io/LutSetTransaction.h): an interrupted
+// bake leaves the old set or the new one, never a mix. With a scene (--for-scene) the resolutions are chosen
 // first (bake/ResolutionChoice.h) and the choice is recorded in the manifest's "for_scene".
 #include <filesystem>
 #include <functional>
@@ -20,7 +21,7 @@
 namespace cloudlut::bake {
 
 struct LutSetPlan {
-  std::filesystem::path out;  // the LUT directory (must exist and be writable)
+  std::filesystem::path out;  // the LUT directory (its parent must exist and be writable)
   bool opticalDepth = true;   // bake the optical-depth table
   OpticalDepthSettings od;
   ScatteringSettings sc;      // sc.single / sc.multiple: which scattering tables to bake

@@ -42,7 +42,7 @@ SceneNeeds readSceneNeeds(const std::string& fileOrPreset, const std::string& qu
       needs.rhoMax = std::max(needs.rhoMax, p.density);
     }
   } else {
-    const scene::CloudscapeScene scene = scene::loadCloudscape(fileOrPreset);
+    const scene::CloudscapeScene scene = scene::loadCloudscape(fileOrPreset, "--for-scene");
     const glm::vec2 range = scene::cloudscapeDensityRange(scene.cloud, scene::qualityPreset(quality));
     needs.kind = "cloudscape";
     needs.rhoMin = range.x;

@@ -41,12 +41,17 @@ std::set<std::string> parseTables(const std::string& text) {
   return tables;
 }
 
-// Creates the output directory and proves it writable, or throws UsageError.
+// Creates the output directory's parent (the new set is staged there and swapped in) and proves
+// it writable, or throws UsageError.
 void prepareOutputDirectory(const fs::path& dir) {
   std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) throw UsageError("cannot create output directory '" + dir.string() + "'");
-  if (access(dir.c_str(), W_OK) != 0) throw UsageError("output directory '" + dir.string() + "' is not writable");
+  fs::path normal = fs::absolute(dir, ec).lexically_normal();
+  if (normal.filename().empty()) normal = normal.parent_path();  // "out/luts/"
+  const fs::path parent = normal.parent_path();
+  fs::create_directories(parent, ec);
+  if (ec || !fs::is_directory(parent)) throw UsageError("--out: cannot create the output directory's parent '" + parent.string() + "'");
+  if (access(parent.c_str(), W_OK) != 0) throw UsageError("--out: the output directory's parent '" + parent.string() + "' is not writable");
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw UsageError("--out: '" + dir.string() + "' is not a directory");
 }
 
 // "64,32,64,32" from a default.
@@ -127,8 +132,9 @@ int runBake(int argc, char** argv) {
   plan.seed = args["seed"].as<std::uint64_t>();
   plan.od.steps = args["steps"].as<int>();
   if (plan.od.steps < 0 || plan.od.steps > 65536) throw UsageError("--steps must be in [1, 65536] (or 0 for the default)");
-  plan.od.extinction = plan.sc.extinction = requirePositive(args["extinction"].as<double>(), "extinction");
-  plan.od.radius = plan.sc.radius = requirePositive(args["radius"].as<double>(), "radius");
+  plan.od.extinction = plan.sc.extinction = args["extinction"].as<double>();
+  plan.od.radius = plan.sc.radius = args["radius"].as<double>();
+  checkExtinctionRadius(plan.od.extinction, plan.od.radius);
   const std::string format = args["format"].as<std::string>();
   if (format != "exr" && format != "bin" && format != "both") throw UsageError("--format: expected exr, bin or both, got '" + format + "'");
   plan.formats = {.bin = format != "exr", .exr = format != "bin"};

@@ -53,7 +53,9 @@ int runCheck(int argc, char** argv) {
   if (!args.count("golden")) throw UsageError("missing --golden DIR");
   const double rtol = args["rtol"].as<double>(), atol = args["atol"].as<double>();
   if (!(rtol >= 0.0) || !(atol >= 0.0)) throw UsageError("--rtol and --atol must be non-negative");
-  const int worstCount = std::max(0, args["worst"].as<int>());
+  const int worst = args["worst"].as<int>();
+  if (worst < 0) throw UsageError("--worst must be 0 or positive (how many of the worst cells to print)");
+  const std::size_t worstCount = static_cast<std::size_t>(worst);
 
   const io::LutSet golden = io::readLutSet(args["golden"].as<std::string>());
   const io::LutSet actual = io::readLutSet(args["dir"].as<std::string>());
@@ -85,10 +87,11 @@ int runCheck(int argc, char** argv) {
         ++outCount;
         const double excess = std::isfinite(diff) ? diff - tol : 1e300;
         bad.push_back({excess, n, c, v, ref});
-        if (bad.size() > 4096) {  // keep only the worst few in memory
-          std::partial_sort(bad.begin(), bad.begin() + worstCount, bad.end(),
+        if (bad.size() > std::max<std::size_t>(4096, 2 * worstCount)) {  // keep only the worst few in memory
+          const std::size_t keep = std::min(bad.size(), worstCount);
+          std::partial_sort(bad.begin(), bad.begin() + static_cast<std::ptrdiff_t>(keep), bad.end(),
                             [](const BadCell& x, const BadCell& y) { return x.excess > y.excess; });
-          bad.resize(static_cast<std::size_t>(worstCount));
+          bad.resize(keep);
         }
       }
     const std::size_t total = gt.nodeCount() * static_cast<std::size_t>(gt.channelCount());
@@ -98,8 +101,8 @@ int runCheck(int argc, char** argv) {
     }
     allPass = false;
     std::printf("%s: %zu of %zu values out of tolerance (rtol %g, atol %g); worst:\n", name.c_str(), outCount, total, rtol, atol);
-    const std::size_t shown = std::min(bad.size(), static_cast<std::size_t>(worstCount));
-    std::partial_sort(bad.begin(), bad.begin() + shown, bad.end(),
+    const std::size_t shown = std::min(bad.size(), worstCount);
+    std::partial_sort(bad.begin(), bad.begin() + static_cast<std::ptrdiff_t>(shown), bad.end(),
                       [](const BadCell& x, const BadCell& y) { return x.excess > y.excess; });
     for (std::size_t i = 0; i < shown; ++i)
       std::printf("  %s channel %s: %.7g, golden %.7g\n", describeNode(gt, bad[i].node).c_str(),

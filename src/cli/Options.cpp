@@ -9,6 +9,7 @@
 
 #include "core/Defaults.h"
 #include "core/Errors.h"
+#include "core/ParameterRules.h"
 
 namespace cloudlut::cli {
 
@@ -87,6 +88,32 @@ double requirePositive(double value, const std::string& option) {
   return value;
 }
 
+std::pair<float, float> parseRangeOption(const std::string& text, const std::string& option) {
+  const auto fail = [&] {
+    return UsageError("--" + option + ": expected lo,hi, two finite numbers with lo < hi within +-1e37, got '" + text + "'");
+  };
+  const auto comma = text.find(',');
+  if (comma == std::string::npos) throw fail();
+  double v[2] = {0, 0};
+  const std::string parts[2] = {text.substr(0, comma), text.substr(comma + 1)};
+  for (int k = 0; k < 2; ++k) {
+    const auto r = std::from_chars(parts[k].data(), parts[k].data() + parts[k].size(), v[k]);
+    if (parts[k].empty() || r.ec != std::errc() || r.ptr != parts[k].data() + parts[k].size() || !std::isfinite(v[k]) ||
+        std::fabs(v[k]) > 1e37)
+      throw fail();
+  }
+  const float lo = static_cast<float>(v[0]), hi = static_cast<float>(v[1]);
+  if (!(hi > lo) || !std::isfinite(hi - lo)) throw fail();
+  return {lo, hi};
+}
+
+void checkExtinctionRadius(double extinction, double radius) {
+  if (const std::string p = rules::extinctionProblem(extinction); !p.empty()) throw UsageError("--extinction " + p);
+  if (const std::string p = rules::radiusProblem(radius); !p.empty()) throw UsageError("--radius " + p);
+  if (const std::string p = rules::opticalRadiusProblem(extinction, radius); !p.empty())
+    throw UsageError("--extinction, --radius: " + p);
+}
+
 glm::vec3 parseVec3Option(const std::string& text, const std::string& option, bool colour) {
   const std::string expected = colour ? "three comma-separated non-negative numbers r,g,b"
                                       : "three comma-separated numbers x,y,z";
@@ -132,23 +159,38 @@ void addPhaseOptions(cxxopts::Options& options, bool defaultFromLuts) {
 }
 
 std::optional<PhasePair> parsePhaseOptions(const cxxopts::ParseResult& args) {
-  if (!args.count("phase") && !args["phase"].has_default()) return std::nullopt;  // count() omits defaults
-  const std::string phase = args["phase"].as<std::string>();
+  const bool given = args.count("phase") > 0;
+  const std::string phase = given || args["phase"].has_default() ? args["phase"].as<std::string>() : std::string();
+  // --g1/--gm apply to cs and hg, --droplet-um to jd: one given for another phase is an error
+  // (count() omits defaults, so only options the user typed are seen here).
+  const bool gGiven = args.count("g1") > 0 || args.count("gm") > 0, dGiven = args.count("droplet-um") > 0;
+  if (phase.empty()) {
+    if (gGiven || dGiven)
+      throw UsageError(std::string(gGiven ? "--g1/--gm" : "--droplet-um") +
+                       " given without --phase (the LUT set's phase functions are used): add --phase " +
+                       (gGiven ? "cs or hg" : "jd"));
+    return std::nullopt;
+  }
+  const auto checked = [](const Phase& p, const char* option) {
+    if (const std::string problem = rules::phaseProblem(p); !problem.empty())
+      throw UsageError(std::string("--") + option + ": " + problem);
+    return p;
+  };
   if (phase == "cs" || phase == "hg") {
-    const double g1 = args["g1"].as<double>(), gm = args["gm"].as<double>();
-    if (!(std::fabs(g1) < 1.0) || !(std::fabs(gm) < 1.0))
-      throw UsageError("--g1 and --gm must lie strictly between -1 and 1");
+    if (dGiven) throw UsageError("--droplet-um applies to --phase jd only");
     const PhaseKind kind = phase == "cs" ? PhaseKind::CornetteShanks : PhaseKind::HenyeyGreenstein;
-    return PhasePair{{kind, static_cast<float>(g1)}, {kind, static_cast<float>(gm)}};
+    const double g1 = args["g1"].as<double>(), gm = args["gm"].as<double>();
+    return PhasePair{checked({kind, static_cast<float>(g1)}, "g1"), checked({kind, static_cast<float>(gm)}, "gm")};
   }
   if (phase == "jd") {
-    const double d = args["droplet-um"].as<double>();
-    if (!(d >= defaults::kDropletDiameterMinUm && d <= defaults::kDropletDiameterMaxUm))
-      throw UsageError("--droplet-um must lie in [5, 50] (the range of the Jendersie-d'Eon fit)");
-    const Phase jd{PhaseKind::JendersieDeon, static_cast<float>(d)};
+    if (gGiven) throw UsageError("--g1/--gm apply to --phase cs and hg only (jd takes --droplet-um)");
+    const Phase jd = checked({PhaseKind::JendersieDeon, static_cast<float>(args["droplet-um"].as<double>())}, "droplet-um");
     return PhasePair{jd, jd};
   }
-  if (phase == "iso") return PhasePair{{PhaseKind::Isotropic, 0.0f}, {PhaseKind::Isotropic, 0.0f}};
+  if (phase == "iso") {
+    if (gGiven || dGiven) throw UsageError("--phase iso takes no --g1, --gm or --droplet-um");
+    return PhasePair{{PhaseKind::Isotropic, 0.0f}, {PhaseKind::Isotropic, 0.0f}};
+  }
   throw UsageError("--phase: expected cs, hg, jd or iso, got '" + phase + "'");
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <cxxopts.hpp>
@@ -32,6 +33,14 @@ std::unique_ptr<tbb::global_control> limitThreads(int threads);
 
 // The value of an option that must be positive.
 double requirePositive(double value, const std::string& option);
+
+// "lo,hi": two finite numbers with lo < hi whose difference is finite in float (a colour scale
+// divides by it); UsageError naming the option.
+std::pair<float, float> parseRangeOption(const std::string& text, const std::string& option);
+
+// --extinction β (1/m) and --radius R (m) by the rules a file obeys too (core/ParameterRules.h):
+// each in range and their product, the optical radius, too. UsageError naming the option.
+void checkExtinctionRadius(double extinction, double radius);
 
 // A default value as an option's text: "0.9", "183.8", "10" (six significant digits).
 std::string defaultText(double value);

@@ -9,10 +9,12 @@
 
 #include "cli/Command.h"
 #include "cli/Options.h"
+#include "io/LutIo.h"
 #include "io/QueryCsv.h"
 #include "cli/TtyProgress.h"
 #include "core/Defaults.h"
 #include "core/Errors.h"
+#include "reference/ScenePathTracer.h"
 #include "reference/SphereMonteCarlo.h"
 
 namespace cloudlut::cli {
@@ -59,8 +61,8 @@ int runReference(int argc, char** argv) {
 
   const long long paths = args["paths"].as<long long>();
   if (paths < 2) throw UsageError("--paths must be at least 2");
-  const double extinction = requirePositive(args["extinction"].as<double>(), "extinction");
-  const double radius = requirePositive(args["radius"].as<double>(), "radius");
+  const double extinction = args["extinction"].as<double>(), radius = args["radius"].as<double>();
+  checkExtinctionRadius(extinction, radius);
   reference::SphereMcSettings st;
   st.paths = paths;
   st.seed = args["seed"].as<unsigned long long>();
@@ -75,8 +77,13 @@ int runReference(int argc, char** argv) {
   for (const io::QueryRow& r : csv.rows) {
     if (glm::dot(r.S, r.v) >= 0.0f)
       throw FileError(args["csv"].as<std::string>(), "row '" + r.text + "': v must point into the sphere (v·S < 0)");
-    queries.push_back({glm::dvec3(r.S), glm::dvec3(r.v), glm::dvec3(r.l),
-                       extinction * radius * static_cast<double>(r.density)});
+    const double tau = extinction * radius * static_cast<double>(r.density);
+    if (!(tau <= reference::kMaxParticleOpticalRadius))  // paths of about tau^2 events each
+      throw FileError(args["csv"].as<std::string>(), "row '" + r.text + "': density x extinction x radius = " +
+                                                         std::to_string(tau) + ", more than the " +
+                                                         std::to_string(static_cast<int>(reference::kMaxParticleOpticalRadius)) +
+                                                         " the path tracer can follow");
+    queries.push_back({glm::dvec3(r.S), glm::dvec3(r.v), glm::dvec3(r.l), tau});
   }
   const ProgressFn progress = makeTtyProgress(args.count("quiet") > 0);
   const auto est = reference::estimateSphereRadiance(queries, st, progress);
@@ -92,10 +99,7 @@ int runReference(int argc, char** argv) {
   }
   if (args.count("out")) {
     const std::string path = args["out"].as<std::string>();
-    std::ofstream f(path, std::ios::binary);
-    if (!f) throw FileError(path, "cannot open for writing");
-    f << out.str();
-    if (!f) throw FileError(path, "write failed");
+    io::writeFileAtomically(path, out.str());
   } else {
     std::fwrite(out.str().data(), 1, out.str().size(), stdout);
   }

@@ -1,6 +1,7 @@
 // `cloudlut reference scene --particles FILE.json`: path-traced ground truth of a particle scene
 // (reference/ScenePathTracer.h), written as a linear EXR with per-pixel standard errors.
 // Dispatched from ReferenceCommand.cpp.
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -10,6 +11,7 @@
 #include "cli/TtyProgress.h"
 #include "core/Errors.h"
 #include "reference/ReferenceImage.h"
+#include "reference/ScenePathTracer.h"
 #include "render/Renderer.h"
 
 namespace cloudlut::cli {
@@ -32,6 +34,8 @@ int runReferenceScene(int argc, char** argv) {
     ("seed", "random seed (the image is the same for any number of threads)",
      cxxopts::value<unsigned long long>()->default_value("1"))
     ("max-order", "stop paths after this many scattering events (0 = no limit)", cxxopts::value<int>()->default_value("0"))
+    ("max-seconds", "give up (exit 1, nothing written) when the path tracing takes longer than this; 0 = no limit",
+     cxxopts::value<double>()->default_value("0"))
     ("jitter", "sample each pixel's area instead of its centre (the renderers sample centres)")
     ("threads", "worker threads (0 = all cores)", cxxopts::value<int>()->default_value("0"))
     ("quiet", "no progress bar, no summary");
@@ -53,6 +57,8 @@ int runReferenceScene(int argc, char** argv) {
   st.maxOrder = args["max-order"].as<int>();
   if (st.maxOrder < 0) throw UsageError("--max-order must be 0 (no limit) or positive");
   st.jitter = args.count("jitter") > 0;
+  st.maxSeconds = args["max-seconds"].as<double>();
+  if (!(st.maxSeconds >= 0.0) || !std::isfinite(st.maxSeconds)) throw UsageError("--max-seconds must be 0 (no limit) or positive");
   const int threadCount = args["threads"].as<int>();
   if (threadCount < 0) throw UsageError("--threads must be 0 (all cores) or positive");
   const auto threads = limitThreads(threadCount);
@@ -63,9 +69,20 @@ int runReferenceScene(int argc, char** argv) {
 
   const bool quiet = args.count("quiet") > 0;
   reference::ReferenceSceneStats stats;
-  const io::ExrImage image = reference::renderReferenceScene(scene.particles, view, medium, st, static_cast<int>(width),
-                                                  static_cast<int>(height), makeTtyProgress(quiet), &stats);
+  io::ExrImage image;
+  try {
+    image = reference::renderReferenceScene(scene.particles, view, medium, st, static_cast<int>(width),
+                                            static_cast<int>(height), makeTtyProgress(quiet), &stats);
+  } catch (const std::invalid_argument& e) {  // a particle too thick to trace
+    throw FileError(args["particles"].as<std::string>(), e.what());
+  } catch (const reference::WorkLimitExceeded& e) {
+    throw FileError(out, std::string("not written: ") + e.what() + " (--max-seconds)");
+  }
   finishTtyProgress();
+  if (stats.truncatedPaths > 0)  // printed even with --quiet: the image is biased
+    std::fprintf(stderr, "cloudlut reference scene: warning: %lld paths were cut at %d scattering events (the image "
+                 "is too dark where they ran); lower the density or the extinction\n",
+                 stats.truncatedPaths, reference::kMaxPathVertices);
   io::writeExrImage(image, out);
   if (!quiet) {
     double maxSe = 0, meanSe = 0;

@@ -75,6 +75,12 @@ int runRender(int argc, char** argv) {
   cxxopts::ParseResult args;
   if (!parseOptions(options, argc, argv, args)) return kExitOk;
   if (wantsRayMarch(args)) return runRayMarchRender(args);
+  // The particle renderer takes the medium from the LUT set: the ray marcher's options do not apply.
+  for (const char* option : {"density-model", "model-seed", "extinction", "radius", "phase", "g1", "gm", "droplet-um",
+                             "steps", "adaptive", "shadow-steps", "octaves", "octave-abc"})
+    if (args.count(option))
+      throw UsageError(std::string("--") + option + " applies to --method raymarch only (--method particles takes "
+                       "the medium and phase functions from the LUT set)");
   for (const char* required : {"luts", "out"})
     if (!args.count(required)) throw UsageError(std::string("missing --") + required);
   const bool particles = args.count("particles") > 0;

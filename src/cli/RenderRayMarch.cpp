@@ -46,6 +46,7 @@ int runRayMarchRender(const cxxopts::ParseResult& args) {
   s.unitOpticalRadius = static_cast<float>(medium.unitOpticalRadius());
   const scene::ViewSettings overrides = parseViewOverrides(args);
   const scene::Scene scene = scene::readScene(args["particles"].as<std::string>());
+  scene::checkRenderParticleCount(scene.particles.size(), args["particles"].as<std::string>());
   s.view = scene::resolveView(scene, overrides);
 
   const auto t0 = std::chrono::steady_clock::now();

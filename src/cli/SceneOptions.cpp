@@ -18,6 +18,7 @@ DrawnScene loadDrawnScene(const cxxopts::ParseResult& args) {
   const scene::ViewSettings overrides = parseViewOverrides(args);
   if (d.particles) {
     d.scene = scene::readScene(args["particles"].as<std::string>());
+    scene::checkRenderParticleCount(d.scene.particles.size(), args["particles"].as<std::string>());
   } else {
     d.cloudscape = scene::loadCloudscape(args.count("scene") ? args["scene"].as<std::string>()
                                                               : std::string(scene::kDefaultCloudscape));
@@ -85,8 +86,9 @@ Medium parseMedium(const cxxopts::ParseResult& args) {
     medium.model = *model;
   }
   if (args.count("model-seed")) medium.seed = args["model-seed"].as<unsigned long long>();
-  if (args.count("extinction")) medium.extinction = requirePositive(args["extinction"].as<double>(), "extinction");
-  if (args.count("radius")) medium.radius = requirePositive(args["radius"].as<double>(), "radius");
+  if (args.count("extinction")) medium.extinction = args["extinction"].as<double>();
+  if (args.count("radius")) medium.radius = args["radius"].as<double>();
+  checkExtinctionRadius(medium.extinction, medium.radius);
   if (const std::optional<PhasePair> phases = parsePhaseOptions(args)) {
     medium.first = phases->first;
     medium.later = phases->later;

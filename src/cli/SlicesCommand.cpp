@@ -33,14 +33,7 @@ int runSlices(int argc, char** argv) {
 
   io::ContactSheetOptions opts;
   opts.channel = args["channel"].as<int>();
-  if (args.count("range")) {
-    const std::string r = args["range"].as<std::string>();
-    float lo = 0, hi = 0;
-    char tail = 0;
-    if (std::sscanf(r.c_str(), "%f,%f%c", &lo, &hi, &tail) != 2 || !(hi > lo))
-      throw UsageError("--range: expected lo,hi with lo < hi, got '" + r + "'");
-    opts.range = std::make_pair(lo, hi);
-  }
+  if (args.count("range")) opts.range = parseRangeOption(args["range"].as<std::string>(), "range");
 
   Table4D table;
   std::string title;

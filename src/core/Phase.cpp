@@ -6,6 +6,7 @@
 
 #include "core/Errors.h"
 #include "core/Glsl.h"
+#include "core/ParameterRules.h"
 
 namespace cloudlut {
 
@@ -48,13 +49,10 @@ nlohmann::json phaseToJson(const Phase& p) {
 }
 
 Phase phaseFromJson(const nlohmann::json& j, const std::string& file, const std::string& field) {
-  if (!j.is_object() || !j.contains("kind") || !j["kind"].is_number_integer() || !j.contains("param") ||
-      !j["param"].is_number())
-    throw FileError(file, field + ": expected {\"kind\": integer, \"param\": number}");
-  const int k = j["kind"].get<int>();
-  const std::optional<PhaseKind> kind = phaseKindFromInt(k);
-  if (!kind) throw FileError(file, field + ": unknown phase kind " + std::to_string(k));
-  return {*kind, j["param"].get<float>()};
+  std::string problem;
+  const std::optional<Phase> phase = rules::phaseFromJsonChecked(j, problem);
+  if (!phase) throw FileError(file, field + ": " + problem);
+  return *phase;
 }
 
 Phase recordedPhase(const nlohmann::json& parameters, const char* key, const Phase& fallback) {

@@ -39,7 +39,7 @@ float phaseValue(const Phase& phase, float mu);
 // the scattering tables' first_phase / later_phase).
 nlohmann::json phaseToJson(const Phase& phase);
 // The way back; FileError(file, "<field>: ...") when `j` is not {"kind": integer, "param":
-// number} of a known kind.
+// number} of a known kind whose parameter obeys core/ParameterRules.h (rules::phaseProblem).
 Phase phaseFromJson(const nlohmann::json& j, const std::string& file, const std::string& field);
 // The phase a table's parameters record under `key` ("first_phase"), read leniently as the
 // shaders' phaseFunction() would take it: a missing object, kind or param takes `fallback`'s; a

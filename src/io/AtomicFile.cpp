@@ -38,8 +38,8 @@ bool writeAll(int fd, std::string_view bytes) {
 
 // Writes `bytes` to "NAME.tmp.<pid>" beside `path`, flushes it to the disk (fsync), and renames
 // it over `path`. The temporary file is removed if any step fails. A directory that does not
-// exist or cannot be written to, and any failed write, raise UsageError naming the directory
-// or the file.
+// exist or cannot be written to raises UsageError naming the directory; a failed write, flush or
+// rename (a full disk) raises FileError naming the file (exit 1).
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes) {
   namespace fs = std::filesystem;
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
@@ -62,9 +62,9 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view byt
     problem = osProblem("cannot close '" + temp.string() + "'");
   if (problem.empty() && ::rename(temp.c_str(), path.c_str()) != 0)
     problem = osProblem("cannot rename '" + temp.string() + "' to '" + path.string() + "'");
-  if (!problem.empty()) {
+  if (!problem.empty()) {  // a full disk (ENOSPC), an I/O error: the file could not be written
     ::unlink(temp.c_str());
-    throw UsageError(problem);
+    throw FileError(path.string(), problem);
   }
 }
 

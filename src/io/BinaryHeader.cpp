@@ -1,5 +1,7 @@
 #include "io/BinaryHeader.h"
 
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -117,6 +119,12 @@ Header parseHeader(std::string_view bytes, const std::filesystem::path& path) {
     r.max = getF64(a + 32);
     r.flags = getU32(a + 40);
     r.warp = std::bit_cast<float>(getU32(a + 44));
+    if (!std::isfinite(r.min) || !std::isfinite(r.max) || !(r.min <= r.max))
+      fail("corrupt header (axis " + std::to_string(k) + " range [" + std::to_string(r.min) + ", " +
+           std::to_string(r.max) + "] is not a finite interval)");
+    if ((r.flags & ~kAxisPeriodic) != 0)
+      fail("corrupt header (axis " + std::to_string(k) + " has reserved flag bits set: " + std::to_string(r.flags) +
+           "; lut_formats/FORMAT.md says they are 0)");
     if (!(r.warp >= 0.0f && r.warp <= kMaxAxisWarp) || (h.version < 2 && r.warp != 0.0f))
       fail("corrupt header (axis " + std::to_string(k) + " node concentration)");
     if (h.dims[k] < 1) fail("corrupt header (axis " + std::to_string(k) + " has no nodes)");

@@ -18,7 +18,7 @@ using Rgb = std::array<std::uint8_t, 3>;
 // A perceptually ordered dark-blue → teal → green → yellow map (viridis-like), t ∈ [0, 1].
 Rgb colourMap(float t) {
   static const float stops[5][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
-  t = std::clamp(t, 0.0f, 1.0f) * 4.0f;
+  t = (t > 0.0f ? std::min(t, 1.0f) : 0.0f) * 4.0f;  // NaN (an overflowed scale) maps to the low end
   const int i = std::min(static_cast<int>(t), 3);
   const float f = t - static_cast<float>(i);
   Rgb c{};
@@ -83,7 +83,13 @@ RgbImage drawContactSheet(const Table4D& table, const std::string& title, const 
     hi = std::max(hi, v);
   }
   if (options.range) std::tie(lo, hi) = *options.range;
+  if (!std::isfinite(lo) || !std::isfinite(hi)) {
+    if (options.range) throw UsageError("the colour-scale range must be finite");
+    lo = 0.0f;  // no finite value at all
+    hi = 1.0f;
+  }
   if (!(hi > lo)) hi = lo + 1.0f;
+  const double span = static_cast<double>(hi) - static_cast<double>(lo);  // finite in double for any floats
 
   const int scale = std::max(1, 48 / std::min(d[0], d[1]));
   const int tileW = d[0] * scale, tileH = d[1] * scale, gap = 1;
@@ -113,7 +119,7 @@ RgbImage drawContactSheet(const Table4D& table, const std::string& title, const 
       for (int i1 = 0; i1 < d[1]; ++i1)
         for (int i0 = 0; i0 < d[0]; ++i0) {
           const float v = table.at(table.index(i0, i1, i2, r), options.channel);
-          const Rgb colour = std::isfinite(v) ? colourMap((v - lo) / (hi - lo)) : magenta;
+          const Rgb colour = std::isfinite(v) ? colourMap(static_cast<float>((static_cast<double>(v) - lo) / span)) : magenta;
           c.rect(x0 + i0 * scale, y0 + i1 * scale, x0 + (i0 + 1) * scale, y0 + (i1 + 1) * scale, colour);
         }
     }

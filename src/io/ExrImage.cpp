@@ -12,10 +12,18 @@
 #include <sstream>
 
 #include "core/Errors.h"
+#include "io/ExrBudget.h"
 #include "io/LutIo.h"
 #include "io/MemoryStreams.h"
 
 namespace cloudlut::io {
+
+namespace {
+// An image of compare's: a handful of channels (R, G, B, A, their standard errors, the lighting
+// terms); 2^28 float samples = 1 GiB decoded at most.
+constexpr std::size_t kMaxImageChannels = 64;
+constexpr std::uint64_t kMaxImageSamples = 1ULL << 28;
+}  // namespace
 
 std::vector<float>& ExrImage::channel(const std::string& name) {
   auto& c = channels[name];
@@ -65,15 +73,17 @@ ExrImage readExrImage(const std::filesystem::path& path) {
   if (bytes.size() < 4 || static_cast<unsigned char>(bytes[0]) != 0x76 || static_cast<unsigned char>(bytes[1]) != 0x2f ||
       static_cast<unsigned char>(bytes[2]) != 0x31 || static_cast<unsigned char>(bytes[3]) != 0x01)
     throw FileError(path.string(), "not an OpenEXR file");
+  // the header by content before OpenEXR parses it: it would reserve what an attribute declares
+  checkExrHeaderBeforeDecoding(path.string(), bytes, ExrHeaderLimits{"supported EXR image", kMaxImageChannels});
   try {
     MemoryIStream is(path.string(), bytes);
     Imf::InputFile file(is);
     const Imf::Header& header = file.header();
     const auto& dw = header.dataWindow();
+    // before any buffer: the window times the channels against the file's size (io/ExrBudget.h)
+    checkExrPixelBudget(path.string(), header, bytes.size(), static_cast<int>(kMaxImageChannels), kMaxImageSamples);
     const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
     const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
-    if (w < 1 || h < 1 || w > 65536 || h > 65536 || w * h > (1LL << 28))
-      throw FileError(path.string(), "unsupported image size " + std::to_string(w) + "x" + std::to_string(h));
     ExrImage image(static_cast<int>(w), static_cast<int>(h));
     Imf::FrameBuffer frame;
     for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {

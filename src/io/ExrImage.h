@@ -38,6 +38,8 @@ struct ExrImage {
 void writeExrImage(const ExrImage& image, const std::filesystem::path& path);
 
 // Reads every channel of the file's data window (decoded to float) and its string attributes.
+// At most 64 channels and 2^28 samples, and no more raw pixel data than the file's size can
+// hold (io/ExrBudget.h): checked on the header, before anything is allocated.
 ExrImage readExrImage(const std::filesystem::path& path);
 
 }  // namespace cloudlut::io

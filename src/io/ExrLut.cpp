@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/Errors.h"
+#include "io/ExrBudget.h"
 #include "io/Fnv1a.h"
 #include "io/LutReaders.h"
 #include "io/MemoryStreams.h"
@@ -161,18 +162,18 @@ std::int32_t int32At(std::string_view bytes, std::size_t pos) {
 }
 
 // The data window and every other box2i: a window the size of a LUT atlas, no larger.
-void checkWindow(const std::string& file, const HeaderAttribute& a) {
+void checkWindow(const std::string& file, const HeaderAttribute& a, const ExrHeaderLimits& limits) {
   const long long width = static_cast<long long>(int32At(a.value, 8)) - int32At(a.value, 0) + 1;
   const long long height = static_cast<long long>(int32At(a.value, 12)) - int32At(a.value, 4) + 1;
   if (width < 1 || height < 1 || width > kMaxAtlasSide || height > kMaxAtlasSide || width * height > kMaxAtlasPixels)
-    throw FileError(file, "not a cloudlut LUT (EXR " + a.name + " " + std::to_string(width) + "x" +
+    throw FileError(file, std::string("not a ") + limits.kind + " (EXR " + a.name + " " + std::to_string(width) + "x" +
                               std::to_string(height) + " is outside any LUT atlas)");
 }
 
 // chlist: 1 to 4 entries (the writer's R, G, B, A), each a name of 1 to 255 bytes and its NUL,
 // int32 pixel type (UINT, HALF or FLOAT), uint8 pLinear, 3 reserved bytes, int32 x and y
 // sampling (1: LUT channels are full resolution), then a NUL that must be the value's last byte.
-void checkChannelList(const std::string& file, const HeaderAttribute& a) {
+void checkChannelList(const std::string& file, const HeaderAttribute& a, const ExrHeaderLimits& limits) {
   constexpr std::size_t kEntryFields = 16;
   std::size_t pos = 0;
   for (int channels = 0;; ++channels) {
@@ -186,8 +187,8 @@ void checkChannelList(const std::string& file, const HeaderAttribute& a) {
       return;
     }
     if (end - pos > kMaxNameBytes) corruptHeader(file, "channel name longer than 255 bytes");
-    if (channels == kMaxChannels)
-      throw FileError(file, "not a cloudlut LUT (more than " + std::to_string(kMaxChannels) + " channels)");
+    if (channels == static_cast<int>(limits.maxChannels))
+      throw FileError(file, std::string("not a ") + limits.kind + " (more than " + std::to_string(limits.maxChannels) + " channels)");
     const std::string channel(a.value.substr(pos, end - pos));
     pos = end + 1;
     if (a.value.size() - pos < kEntryFields) corruptHeader(file, "channel " + channel + " runs past its list");
@@ -195,23 +196,23 @@ void checkChannelList(const std::string& file, const HeaderAttribute& a) {
     if (pixelType < Imf::UINT || pixelType > Imf::FLOAT)
       corruptHeader(file, "channel " + channel + " has pixel type " + std::to_string(pixelType));
     if (int32At(a.value, pos + 8) != 1 || int32At(a.value, pos + 12) != 1)
-      throw FileError(file, "not a cloudlut LUT (channel " + channel + " is subsampled)");
+      throw FileError(file, std::string("not a ") + limits.kind + " (channel " + channel + " is subsampled)");
     pos += kEntryFields;
   }
 }
 
-void checkCompression(const std::string& file, const HeaderAttribute& a) {
+void checkCompression(const std::string& file, const HeaderAttribute& a, const ExrHeaderLimits&) {
   if (static_cast<unsigned char>(a.value[0]) >= Imf::NUM_COMPRESSION_METHODS)
     corruptHeader(file, "unknown compression " + std::to_string(static_cast<unsigned char>(a.value[0])));
 }
 
-void checkLineOrder(const std::string& file, const HeaderAttribute& a) {
+void checkLineOrder(const std::string& file, const HeaderAttribute& a, const ExrHeaderLimits&) {
   if (static_cast<unsigned char>(a.value[0]) >= Imf::NUM_LINEORDERS)
     corruptHeader(file, "unknown line order " + std::to_string(static_cast<unsigned char>(a.value[0])));
 }
 
 // OpenEXR reads a string attribute as exactly its declared size; only its length is bounded.
-void checkString(const std::string& file, const HeaderAttribute& a) {
+void checkString(const std::string& file, const HeaderAttribute& a, const ExrHeaderLimits&) {
   const std::size_t limit = a.name == "cloudlut" ? kMaxDescriptionBytes : kMaxStringBytes;
   if (a.value.size() > limit)
     corruptHeader(file, "string \"" + a.name + "\" of " + std::to_string(a.value.size()) + " bytes, more than " +
@@ -222,7 +223,7 @@ void checkString(const std::string& file, const HeaderAttribute& a) {
 struct AttributeRule {
   const char* type;
   int size;
-  void (*check)(const std::string& file, const HeaderAttribute& a);
+  void (*check)(const std::string& file, const HeaderAttribute& a, const ExrHeaderLimits& limits);
 };
 constexpr AttributeRule kAttributeRules[] = {
     // The types a cloudlut LUT's header has (ImfHeader's standard attributes, plus ours).
@@ -257,17 +258,17 @@ constexpr AttributeRule kAttributeRules[] = {
 // Checks one attribute against its type's rule. A type OpenEXR knows but the table does not
 // list (preview, stringvector, floatvector, idmanifest, tiledesc, ...) is parsed by OpenEXR from
 // its content, which is not checked here, and no LUT needs one: it is rejected.
-void checkAttribute(const std::string& file, const HeaderAttribute& a) {
+void checkAttribute(const std::string& file, const HeaderAttribute& a, const ExrHeaderLimits& limits) {
   for (const AttributeRule& rule : kAttributeRules) {
     if (a.type != rule.type) continue;
     if (rule.size >= 0 && a.value.size() != static_cast<std::size_t>(rule.size))
       corruptHeader(file, "attribute \"" + a.name + "\" of type " + a.type + " has " + std::to_string(a.value.size()) +
                               " bytes, not " + std::to_string(rule.size));
-    if (rule.check != nullptr) rule.check(file, a);
+    if (rule.check != nullptr) rule.check(file, a, limits);
     return;
   }
   if (Imf::Attribute::knownType(a.type.c_str()))
-    throw FileError(file, "not a cloudlut LUT (EXR attribute \"" + a.name + "\" of type " + a.type + ")");
+    throw FileError(file, std::string("not a ") + limits.kind + " (EXR attribute \"" + a.name + "\" of type " + a.type + ")");
 }
 
 // Checks the magic number and version word of a single-part scanline EXR, then walks its
@@ -275,14 +276,16 @@ void checkAttribute(const std::string& file, const HeaderAttribute& a) {
 // must fit in the bytes left, and every value must pass checkAttribute. After this, OpenEXR's
 // header parser reads the same attributes in the same places, and allocates nothing larger
 // than the file, the atlas limits or the string limits allow.
-void checkHeaderBeforeDecoding(const std::string& file, const std::string& bytes) {
+}  // namespace
+
+void checkExrHeaderBeforeDecoding(const std::string& file, const std::string& bytes, const ExrHeaderLimits& limits) {
   if (bytes.size() < 8) throw FileError(file, "not a readable EXR file (too short)");
   if (int32At(bytes, 0) != 20000630) throw FileError(file, "not a readable EXR file (no EXR magic number)");
   const auto version = static_cast<std::uint32_t>(int32At(bytes, 4));
   if ((version & 0xffu) != 2)
     throw FileError(file, "not a readable EXR file (EXR version " + std::to_string(version & 0xffu) + ")");
   // Flags: 0x200 tiled, 0x800 deep, 0x1000 multi-part; 0x400 (long names) is harmless.
-  if ((version & ~0x4ffu) != 0) throw FileError(file, "not a cloudlut LUT (tiled, deep or multi-part EXR)");
+  if ((version & ~0x4ffu) != 0) throw FileError(file, std::string("not a ") + limits.kind + " (tiled, deep or multi-part EXR)");
   Imf::staticInitialize();  // registers the attribute types Imf::Attribute::knownType knows
   std::size_t pos = 8;
   auto readName = [&](const char* what) {
@@ -304,16 +307,18 @@ void checkHeaderBeforeDecoding(const std::string& file, const std::string& bytes
       corruptHeader(file, "an attribute claims " + std::to_string(size) + " bytes, " +
                               std::to_string(bytes.size() - pos) + " remain");
     a.value = std::string_view(bytes).substr(pos, static_cast<std::size_t>(size));
-    checkAttribute(file, a);
+    checkAttribute(file, a, limits);
     pos += static_cast<std::size_t>(size);
   }
   corruptHeader(file, "too many attributes");
 }
 
+namespace {
+
 // Decodes an EXR held in memory; OpenEXR's exceptions pass through to the caller.
 LoadedTable decodeExr(const std::filesystem::path& path, const std::string& bytes) {
   const std::string name = path.string();
-  checkHeaderBeforeDecoding(name, bytes);
+  checkExrHeaderBeforeDecoding(name, bytes, ExrHeaderLimits{"cloudlut LUT", static_cast<std::size_t>(kMaxChannels)});
   MemoryIStream is(name, bytes);
   Imf::InputFile file(is);
   const Imf::Header& header = file.header();
@@ -328,6 +333,9 @@ LoadedTable decodeExr(const std::filesystem::path& path, const std::string& byte
   if (description.is_discarded() || !description.is_object())
     throw FileError(name, "corrupt \"cloudlut\" attribute (not a JSON object)");
 
+  // the pixels the header claims must fit in the file (io/ExrBudget.h) before the table and its
+  // atlas are allocated: a 26 KB file must not claim a 128^4 table
+  checkExrPixelBudget(name, header, bytes.size(), 4, static_cast<std::uint64_t>(kMaxAtlasPixels) * 4);
   Table4D table = tableFromDescription(description, path);  // checks the size it claims
   const auto d = table.dims();
   const int C = table.channelCount();

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -19,9 +20,30 @@ std::string trim(const std::string& s) {
   return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
 }
 
+// `text` with every byte outside printable ASCII as \xNN, so that a message carries all of it
+// (a NUL byte would end it).
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7f) {
+      out += c;
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", u);
+      out += buf;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 QueryCsv readQueryCsv(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw FileError(path.string(), "missing (no such CSV file)");
+  if (std::filesystem::is_directory(status)) throw FileError(path.string(), "is a directory, not a CSV file");
   std::ifstream in(path);
   if (!in) throw FileError(path.string(), "cannot open the CSV file");
   QueryCsv csv;
@@ -44,7 +66,7 @@ QueryCsv readQueryCsv(const std::filesystem::path& path) {
       float v = 0.0f;
       const auto res = std::from_chars(field.data(), field.data() + field.size(), v);
       if (res.ec != std::errc() || res.ptr != field.data() + field.size() || !std::isfinite(v))
-        throw FileError(path.string(), where + "'" + field + "' is not a finite number");
+        throw FileError(path.string(), where + "'" + printable(field) + "' is not a finite number");
       values[count++] = v;
     }
     if (count != 10)

@@ -1,10 +1,11 @@
-// readLut: picks the reader by the file's first bytes.
+// readLut: picks the reader by the file's first bytes, then checks the table's physical parameters.
 #include <cstring>
 #include <fstream>
 
 #include "core/Errors.h"
 #include "io/BinaryHeader.h"
 #include "io/LutReaders.h"
+#include "io/TableDescription.h"
 
 namespace cloudlut::io {
 
@@ -30,11 +31,14 @@ LoadedTable readLut(const std::filesystem::path& path) {
   in.read(magic, sizeof magic);
   const auto got = static_cast<std::size_t>(in.gcount());
   if (got == 0) throw FileError(path.string(), "cannot be read");
-  if (std::string_view(magic, got) == std::string_view(binary::kMagic, got))
-    return readBinaryLut(path);
   const unsigned char exr[4] = {0x76, 0x2f, 0x31, 0x01};
-  if (got >= 4 && std::memcmp(magic, exr, 4) == 0) return readExrLut(path);
-  throw FileError(path.string(), "not a cloudlut LUT (bad magic)");
+  const bool binary = std::string_view(magic, got) == std::string_view(binary::kMagic, got);
+  if (!binary && !(got >= 4 && std::memcmp(magic, exr, 4) == 0))
+    throw FileError(path.string(), "not a cloudlut LUT (bad magic)");
+  LoadedTable loaded = binary ? readBinaryLut(path) : readExrLut(path);
+  // physical parameters obey the command line's rules, whatever the format (core/ParameterRules.h)
+  checkTableParameters(loaded.table.parameters(), path);
+  return loaded;
 }
 
 }  // namespace cloudlut::io

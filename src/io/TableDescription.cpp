@@ -3,10 +3,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 #include "core/Errors.h"
+#include "core/ParameterRules.h"
+#include "core/ReferenceParticle.h"
+#include "core/Defaults.h"
 #include "io/Fnv1a.h"
 #include "io/SampleCodec.h"
 
@@ -77,6 +81,37 @@ void checkClaimedSize(const std::array<std::uint32_t, 4>& dims, std::uint32_t ch
   }
 }
 
+void checkTableParameters(const nlohmann::json& p, const std::filesystem::path& path) {
+  if (p.is_null()) return;
+  if (!p.is_object()) throw FileError(path.string(), "parameters: expected a JSON object");
+  const auto fail = [&](const std::string& field, const std::string& problem) {
+    throw FileError(path.string(), "parameters." + field + ": " + problem);
+  };
+  std::string problem;
+  double beta = defaults::kExtinctionPerMetre, radius = defaults::kParticleRadiusMetres;
+  if (p.contains("extinction_per_m")) {
+    const std::optional<double> v = rules::numberFromJson(p["extinction_per_m"], problem);
+    if (!v) fail("extinction_per_m", problem);
+    if (problem = rules::extinctionProblem(*v); !problem.empty()) fail("extinction_per_m", problem);
+    beta = *v;
+  }
+  if (p.contains("radius_m")) {
+    const std::optional<double> v = rules::numberFromJson(p["radius_m"], problem);
+    if (!v) fail("radius_m", problem);
+    if (problem = rules::radiusProblem(*v); !problem.empty()) fail("radius_m", problem);
+    radius = *v;
+  }
+  if (problem = rules::opticalRadiusProblem(beta, radius); !problem.empty()) fail("extinction_per_m", problem);
+  for (const char* key : {"first_phase", "later_phase"})
+    if (p.contains(key) && !rules::phaseFromJsonChecked(p[key], problem)) fail(key, problem);
+  if (p.contains("seed") && !rules::seedFromJson(p["seed"], problem)) fail("seed", problem);
+  if (p.contains("density_model")) {
+    const nlohmann::json& m = p["density_model"];
+    if (!m.is_string() || !parseDensityModel(m.get<std::string>()))
+      fail("density_model", "expected one of noise, threshold, pyroclastic, radial, sphere, got " + m.dump());
+  }
+}
+
 namespace {
 
 // The value of key `key` of `object` if it has type `T`, else a FileError naming the key.
@@ -110,6 +145,8 @@ Table4D tableFromDescription(const nlohmann::json& description, const std::files
     axes[k].min = required<double>(a, "min", path);
     axes[k].max = required<double>(a, "max", path);
     axes[k].periodic = required<bool>(a, "periodic", path);
+    if (!std::isfinite(axes[k].min) || !std::isfinite(axes[k].max) || !(axes[k].min <= axes[k].max))
+      throw FileError(path.string(), "axes[" + std::to_string(k) + "]: min and max must be finite with min <= max");
     // "warp" (node concentration, cloudlut_geometry.glsl) is absent from older files: uniform.
     if (a.contains("warp")) {
       axes[k].warp = required<double>(a, "warp", path);

@@ -26,6 +26,12 @@ bool parseChecksumHex(const std::string& text, std::uint64_t& checksum);
 // table it claims would not fit in memory (checked before allocating).
 Table4D tableFromDescription(const nlohmann::json& description, const std::filesystem::path& path);
 
+// Checks the physical parameters a table records (lut_formats/FORMAT.md: extinction_per_m,
+// radius_m, their product, first_phase, later_phase, seed, density_model; each when present)
+// by the rules the command line applies (core/ParameterRules.h). FileError(path,
+// "parameters.FIELD: problem") for the first that breaks one, wrong JSON types included.
+void checkTableParameters(const nlohmann::json& parameters, const std::filesystem::path& path);
+
 // Throws FileError(path, ...) if a table of these dims and channels would not fit in memory.
 void checkClaimedSize(const std::array<std::uint32_t, 4>& dims, std::uint32_t channels,
                       const std::filesystem::path& path);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
@@ -17,6 +18,8 @@ io::ExrImage renderReferenceScene(const std::vector<scene::Particle>& particles,
   m.unitOpticalRadius = medium.unitOpticalRadius();
   for (const scene::Particle& p : particles)
     m.particles.push_back({glm::dvec3(p.center), glm::dmat3(p.toParticle()), static_cast<double>(p.density)});
+  if (const std::string problem = mediumWorkProblem(m); !problem.empty())
+    throw std::invalid_argument(problem);
   SceneLight light;
   light.sunDirection = glm::normalize(glm::dvec3(view.lighting.sunDirection));
   ScenePtSettings st = settings;
@@ -32,6 +35,7 @@ io::ExrImage renderReferenceScene(const std::vector<scene::Particle>& particles,
   if (stats) {
     stats->seconds = img.seconds;
     stats->meanVertices = img.meanVertices;
+    stats->truncatedPaths = img.truncatedPaths;
   }
   io::ExrImage out(width, height);
   const char* rgb[3] = {"R", "G", "B"};

@@ -17,6 +17,7 @@ namespace cloudlut::reference {
 struct ReferenceSceneStats {
   double seconds = 0;       // wall time of the path tracing
   double meanVertices = 0;  // mean path length, scattering vertices
+  long long truncatedPaths = 0;  // paths cut at kMaxPathVertices (reference/ScenePathTracer.h)
 };
 
 // Channels: R, G, B (linear radiance: sun colour × (single + multiple) + sky colour × ambient),
@@ -25,6 +26,8 @@ struct ReferenceSceneStats {
 // irradiance, sr⁻¹) and "ambient" (per unit sky radiance). The phase functions are the
 // medium's (they override settings.first / later). Attribute "cloudlutReference" records the
 // medium and the settings as JSON. `stats` (optional) receives the time and mean path length.
+// std::invalid_argument (mediumWorkProblem's message) when a particle is too thick to trace;
+// WorkLimitExceeded when settings.maxSeconds passes.
 io::ExrImage renderReferenceScene(const std::vector<scene::Particle>& particles, const scene::View& view,
                                   const Medium& medium, const ScenePtSettings& settings, int width, int height,
                                   const ProgressFn& progress = {}, ReferenceSceneStats* stats = nullptr);

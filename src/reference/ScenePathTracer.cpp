@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include <glm/geometric.hpp>
@@ -16,7 +17,6 @@ namespace cloudlut::reference {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr int kSafetyMaxVertices = 1000000;
 
 // The part of a ray inside one particle: [t0, t1] in world units along the ray, the particle's
 // majorant along the ray, and the ray in the particle's unit-sphere coordinates.
@@ -139,6 +139,7 @@ double phaseAt(const Phase& p, double mu) {
 struct PathSample {
   double single = 0, multiple = 0, sky = 0, transmittance = 1;
   int vertices = 0;
+  bool truncated = false;  // cut at kMaxPathVertices
 };
 
 PathSample tracePath(const SceneMedium& m, const SceneLight& light, const ScenePtSettings& st, glm::dvec3 origin,
@@ -153,14 +154,17 @@ PathSample tracePath(const SceneMedium& m, const SceneLight& light, const SceneP
     origin += t * dir;
   }
   const glm::dvec3 l = light.sunDirection;
-  const int maxOrder = st.maxOrder > 0 ? st.maxOrder : kSafetyMaxVertices;
+  const int maxOrder = st.maxOrder > 0 ? st.maxOrder : kMaxPathVertices;
   for (int order = 1;; ++order) {
     out.vertices = order;
     // Next-event estimation: sunlight's first scattering at this vertex.
     const RaySpans toSun(m, origin, l);
     const double sun = phaseAt(st.first, glm::dot(dir, l)) * transmittance(m, toSun, rng, active);
     (order == 1 ? out.single : out.multiple) += sun;
-    if (order >= maxOrder) break;
+    if (order >= maxOrder) {
+      out.truncated = st.maxOrder <= 0;
+      break;
+    }
     // Continue along a direction sampled from the later phase function.
     const double mu = samplePhaseCosine(st.later, rng);
     dir = rotateAround(dir, mu, 2.0 * 3.14159265358979323846 * rng.next());
@@ -249,6 +253,9 @@ ScenePtImage renderScene(const SceneMedium& medium, const SceneLight& light, con
   const int tiles = tilesX * tilesY;
   std::atomic<int> done{0};
   reportProgress(progress, "path tracing", 0.0);
+  std::atomic<long long> truncated{0}, pixelsDone{0};
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  const double pixelCount = static_cast<double>(img.pixels.size());
   tbb::parallel_for(0, tiles, [&](int tile) {
     std::vector<const Span*> active;
     const int tx = tile % tilesX, ty = tile / tilesX;
@@ -264,17 +271,44 @@ ScenePtImage renderScene(const SceneMedium& medium, const SceneLight& light, con
             const double jx = rng.next(), jy = rng.next();
             cameraRay(x + jx, y + jy, o, d);
           }
-          mo.add(tracePath(medium, light, settings, o, glm::normalize(d), rng, active));
+          const PathSample path = tracePath(medium, light, settings, o, glm::normalize(d), rng, active);
+          if (path.truncated) ++truncated;
+          mo.add(path);
         }
         img.pixels[index] = mo.estimate();
+        const long long finished = ++pixelsDone;
+        if (settings.maxSeconds > 0 && elapsed() > settings.maxSeconds) {
+          char message[256];
+          std::snprintf(message, sizeof message,
+                        "stopped after %.1f s (the time limit): %lld of %.0f pixels done, about %.3g s needed for the "
+                        "whole image at this rate",
+                        elapsed(), finished, pixelCount, elapsed() * pixelCount / static_cast<double>(finished));
+          throw WorkLimitExceeded(message);
+        }
       }
     reportProgress(progress, "path tracing", static_cast<double>(++done) / tiles);
   });
   double v = 0;
   for (const auto& p : img.pixels) v += p.vertices;
   img.meanVertices = img.pixels.empty() ? 0 : v / static_cast<double>(img.pixels.size());
-  img.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  img.seconds = elapsed();
+  img.truncatedPaths = truncated;
   return img;
+}
+
+std::string mediumWorkProblem(const SceneMedium& medium) {
+  for (std::size_t i = 0; i < medium.particles.size(); ++i) {
+    const double tau = medium.unitOpticalRadius * medium.particles[i].density;
+    if (!(tau <= kMaxParticleOpticalRadius)) {
+      char message[256];
+      std::snprintf(message, sizeof message,
+                    "particles[%zu].density: optical radius %.3g (density x extinction x radius) exceeds %g, beyond "
+                    "what the path tracer can follow",
+                    i, tau, kMaxParticleOpticalRadius);
+      return message;
+    }
+  }
+  return {};
 }
 
 }  // namespace cloudlut::reference

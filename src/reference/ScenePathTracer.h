@@ -34,6 +34,8 @@
 // image does not depend on the number of threads.
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -64,9 +66,28 @@ struct ScenePtSettings {
   Phase later = defaults::kLaterPhase;  // every later scattering (path continuation)
   int samplesPerPixel = 64;
   std::uint64_t seed = 1;
-  int maxOrder = 0;          // > 0: stop after this many scattering events; 0 = no limit
+  int maxOrder = 0;          // > 0: stop after this many scattering events; 0 = kMaxPathVertices
   bool jitter = false;       // sample the pixel's area (true) or its centre (false)
+  double maxSeconds = 0;     // > 0: give up (WorkLimitExceeded) once the wall time passes this
 };
+
+// Work limits that bound every accepted input. A path ends after kMaxPathVertices scattering
+// events even without maxOrder (diffusion needs about τ² of them in a particle of optical radius
+// τ; 10⁶ covers τ ≈ 1000); the paths cut there are counted (ScenePtImage::truncatedPaths).
+inline constexpr int kMaxPathVertices = 1000000;
+// The optical radius β·R·ρ_i of one particle above which its paths (about τ² events each) and
+// the null collisions of delta tracking cannot finish in useful time.
+inline constexpr double kMaxParticleOpticalRadius = 10000.0;
+
+// Thrown by renderScene when ScenePtSettings::maxSeconds passes; the message says how much was
+// done and estimates the time the whole image would need.
+struct WorkLimitExceeded : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The first particle whose optical radius β·R·ρ_i (dimensionless) exceeds
+// kMaxParticleOpticalRadius, as "particles[i].density: ..."; empty when there is none.
+std::string mediumWorkProblem(const SceneMedium& medium);
 
 struct SceneLight {
   glm::dvec3 sunDirection{0.0, 1.0, 0.0};  // unit, toward the sun
@@ -99,6 +120,7 @@ struct ScenePtImage {
   std::vector<RayEstimate> pixels;
   double seconds = 0;
   double meanVertices = 0;  // scattering vertices per path
+  long long truncatedPaths = 0;  // paths cut at kMaxPathVertices (maxOrder 0): a dark bias
 };
 
 using CameraRayFn = std::function<void(double px, double py, glm::dvec3& origin, glm::dvec3& direction)>;

@@ -110,7 +110,7 @@ CloudscapeScene parseCloudscape(const nlohmann::json& doc, const std::string& so
   return scene;
 }
 
-CloudscapeScene loadCloudscape(const std::string& nameOrPath) {
+CloudscapeScene loadCloudscape(const std::string& nameOrPath, const std::string& option) {
   const auto& names = cloudscapePresetNames();
   if (std::find(names.begin(), names.end(), nameOrPath) != names.end()) {
     const std::string file = nameOrPath + ".json";
@@ -127,7 +127,7 @@ CloudscapeScene loadCloudscape(const std::string& nameOrPath) {
   if (!std::filesystem::is_regular_file(nameOrPath, ec)) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    throw UsageError("--scene: '" + nameOrPath + "' is neither a preset (" + list + ") nor a file");
+    throw UsageError(option + ": '" + nameOrPath + "' is neither a cloudscape preset (" + list + ") nor a file");
   }
   std::ifstream in(nameOrPath, std::ios::binary);
   std::stringstream text;

@@ -56,8 +56,8 @@ struct CloudscapeScene {
 // Parses a cloudscape document (`source` names it in errors: FileError "<source>: <field>: ...").
 CloudscapeScene parseCloudscape(const nlohmann::json& document, const std::string& source);
 // The embedded preset NAME (data/presets/NAME.json), or else the file at that path; a name that
-// is neither is a UsageError listing the presets.
-CloudscapeScene loadCloudscape(const std::string& nameOrPath);
+// is neither is a UsageError naming `option` and listing the presets.
+CloudscapeScene loadCloudscape(const std::string& nameOrPath, const std::string& option = "--scene");
 const std::vector<std::string>& cloudscapePresetNames();
 inline constexpr const char* kDefaultCloudscape = "fair_weather_cumulus";
 // True when the JSON document is a cloudscape (no "particles" array).

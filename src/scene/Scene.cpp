@@ -1,9 +1,11 @@
 #include "scene/Scene.h"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <set>
+#include <utility>
 #include <sstream>
 
 #include <glm/geometric.hpp>
@@ -196,7 +198,11 @@ Scene parseScene(const nlohmann::json& document, const std::string& source) {
 
 Scene readScene(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw FileError(path.string(), "missing (no such scene file)");
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw FileError(path.string(), "missing (no such scene file)");
+  if (std::filesystem::is_directory(status)) throw FileError(path.string(), "is a directory, not a scene file");
+  if (!std::filesystem::is_regular_file(status))
+    throw FileError(path.string(), "not a regular file (a scene is a JSON file)");
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
@@ -204,6 +210,13 @@ Scene readScene(const std::filesystem::path& path) {
   const nlohmann::json document = nlohmann::json::parse(text.str(), nullptr, false);
   if (document.is_discarded()) throw FileError(path.string(), "invalid JSON");
   return parseScene(document, path.string());
+}
+
+void checkRenderParticleCount(std::size_t count, const std::string& source) {
+  if (count > kMaxRenderParticles)
+    throw UsageError(source + ": " + std::to_string(count) + " particles, more than the " +
+                     std::to_string(kMaxRenderParticles) +
+                     " one render takes (the occlusion pass grows about as N^2.8); split the scene");
 }
 
 View resolveView(const Scene& scene, const ViewSettings& commandLine) {
@@ -234,11 +247,32 @@ View resolveView(const Scene& scene, const ViewSettings& commandLine) {
   const float distance = 1.1f * radius / std::sin(0.5f * glm::radians(view.camera.fovDeg));
   view.camera.eye = pick(commandLine.eye, f.eye,
                          view.camera.target + distance * glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f)));
-  const glm::vec3 forward = view.camera.target - view.camera.eye;
-  if (!(glm::length(forward) > 1e-6f * std::max(1.0f, glm::length(view.camera.eye))))
+  // In double: a float length overflows near 1e19 and underflows near 1e-19.
+  const glm::dvec3 eye(view.camera.eye), target(view.camera.target), up(view.camera.up);
+  for (const auto& [point, name] : {std::pair{eye, "eye"}, std::pair{target, "target (the particles' centre unless given)"}})
+    if (!(glm::length(point) <= kMaxSceneDistance)) {
+      char message[256];
+      std::snprintf(message, sizeof message,
+                    "camera: the %s lies %.3g m from the origin, more than %.0e m (the float range the renderers work "
+                    "in; camera.eye/camera.target or --eye/--target)",
+                    name, glm::length(point), kMaxSceneDistance);
+      throw UsageError(message);
+    }
+  const double separation = glm::length(target - eye);
+  if (!(separation <= kMaxSceneDistance)) {
+    char message[224];
+    std::snprintf(message, sizeof message,
+                  "camera: eye and target are %.3g m apart, more than %.0e m (the float range the renderers work in; "
+                  "camera.eye/camera.target or --eye/--target)",
+                  separation, kMaxSceneDistance);
+    throw UsageError(message);
+  }
+  const double scale = std::max(glm::length(eye), glm::length(target));
+  if (!(separation > 1e-6 * scale) || !(separation > 1e-18))
     throw UsageError("camera: eye and target coincide (camera.eye/camera.target or --eye/--target)");
-  if (!(glm::length(glm::cross(glm::normalize(forward), glm::normalize(view.camera.up))) > 1e-4f))
-    throw UsageError("camera: up is parallel to the view direction (camera.up)");
+  const glm::dvec3 forward = (target - eye) / separation;
+  if (!(glm::length(glm::cross(forward, glm::normalize(up))) > 1e-4))
+    throw UsageError("camera: up is parallel to the view direction (camera.up or --up)");
 
   const glm::vec3 sun = pick(commandLine.sunDirection, f.sunDirection, glm::vec3(0.4f, 0.8f, 0.45f));
   if (!(glm::length(sun) > 1e-12f)) throw UsageError("--sun: the direction toward the sun must not be zero");
