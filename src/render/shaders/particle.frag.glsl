@@ -20,8 +20,8 @@ uniform sampler3D uMultiple;
 uniform vec4 uOpticalDepthDims;  // (N0, N1, N2, N3)
 uniform vec4 uSingleDims;
 uniform vec4 uMultipleDims;
-uniform vec3 uSingleAxes;    // log2 rho at the first and last node of axis 3, theta_s warp
-uniform vec3 uMultipleAxes;
+uniform vec4 uSingleAxes;    // log2 rho at the first and last node of axis 3, theta_s warp, layout flags
+uniform vec4 uMultipleAxes;
 uniform float uUnitOpticalRadius;    // sigma = extinction * radius of the optical-depth table
 uniform int uFirstPhaseKind;         // phaseFunction() kind and parameter of the single table
 uniform float uFirstPhaseParam;
@@ -73,13 +73,13 @@ void main() {
   // mean source of the sphere of density rho. Both carry the ray's own opacity 1 − e^{−τ}.
   float single = 0.0;
   if ((uTerms & 1) != 0) {
-    vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleAxes.x, uSingleAxes.y, uSingleAxes.z);
+    vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleAxes, float(uSingleDims.w));
     single = phaseFunction(uFirstPhaseKind, dot(dir, uSunDirection), uFirstPhaseParam) *
              singleScatteringFromTable(cloudlutSample4D(uSingle, x, uSingleDims).x, tau);
   }
   float multiple = 0.0;
   if ((uTerms & 2) != 0) {
-    vec4 x = scatteringAxes(S, v, l, rho, uMultipleAxes.x, uMultipleAxes.y, uMultipleAxes.z);
+    vec4 x = scatteringAxes(S, v, l, rho, uMultipleAxes, float(uMultipleDims.w));
     multiple = multipleScatteringFromTable(cloudlutSample4D(uMultiple, x, uMultipleDims).x, tau);
   }
   // Ambient: sky radiance, scaled by the opacity and by f(distance to the first matter).
