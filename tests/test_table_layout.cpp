@@ -12,6 +12,7 @@
 
 #include "bake/ScatteringBaker.h"
 #include "core/Errors.h"
+#include "core/Glsl.h"
 #include "core/TableLookup.h"
 #include "io/Fnv1a.h"
 #include "io/LittleEndian.h"
@@ -151,7 +152,7 @@ TEST_CASE("Version 2 scattering tables are still read and sampled the old way", 
   // layout 0: density fraction linear in log2 ρ, φv/2π
   const glm::vec3 S(0.48f, 0.0f, 0.877f), l(0.0f, 0.0f, 1.0f), v = glm::normalize(glm::vec3(-0.7f, -0.3f, -0.4f));
   const glm::vec4 x = glsl::scatteringAxes(S, v, l, 0.5f, scatteringAxesRecord(r.table), 3.0f);
-  CHECK(x.w == Approx(glsl::densityAxis(0.5f, s.sMin, s.sMax)));
+  CHECK(x.w == Approx(glsl::densityAxis(0.5f, static_cast<float>(s.sMin), static_cast<float>(s.sMax))));
   CHECK(x.y > 0.5f);  // v.y < 0: φv in (π, 2π), not folded
 }
 
