@@ -47,6 +47,13 @@ struct Axis {
   // node i sits at the axis fraction i/(size-1), at the value
   // min + (max - min) * concentratedFraction(i/(size-1), warp). 0 = uniform nodes.
   float warp = 0.0f;
+  // Version 3. Folded: the quantity is mirror-symmetric about `max` and only [min, max] is
+  // stored (the scattering tables' φv over [0, π]: sample at mirroredAzimuth(φv)).
+  // linearInExp2: a log2 axis interpolated linearly in 2^value between neighbouring nodes (the
+  // scattering tables' density: densityAxisLinearInRho). scatteringAxes() in
+  // cloudlut_geometry.glsl takes both as its layout flags (scatteringAxesRecord below).
+  bool folded = false;
+  bool linearInExp2 = false;
 };
 
 // A loaded table. Layout of `values`: axis 0 fastest, then 1, 2, 3; channels interleaved — a
@@ -58,6 +65,7 @@ struct Lut {
   std::vector<std::string> channels;
   SampleType sampleType = SampleType::Float;  // how the file stores the samples
   std::string description;                    // the header's JSON description (may be empty)
+  std::uint32_t version = 0;                  // the file's format version
   std::vector<float> values;                  // the samples decoded to float (u8 as byte/255)
 
   std::size_t channelCount() const { return channels.size(); }
@@ -67,6 +75,15 @@ struct Lut {
   // Bytes per stored sample in the file: 1, 2 or 4.
   std::size_t sampleBytes() const {
     return sampleType == SampleType::U8 ? 1u : sampleType == SampleType::Half ? 2u : 4u;
+  }
+
+  // For a scattering table (θS, φv, θv, log2 ρ): the axes record scatteringAxes() in
+  // cloudlut_geometry.glsl takes, (log2 ρ at the first and last density node, θS warp, layout),
+  // layout = 1 if φv is folded + 2 if the density axis is interpolated linearly in ρ. Pass
+  // dims[3] as its density node count.
+  std::array<float, 4> scatteringAxesRecord() const {
+    const float layout = (axes[1].folded ? 1.0f : 0.0f) + (axes[3].linearInExp2 ? 2.0f : 0.0f);
+    return {static_cast<float>(axes[3].min), static_cast<float>(axes[3].max), axes[0].warp, layout};
   }
 
   // Index of node (i0, i1, i2, i3); multiply by channelCount() for the first value.
@@ -178,8 +195,8 @@ inline std::size_t checkPrefix(const std::uint8_t* p, std::size_t available,
     fail(name, "truncated: expected a header of at least 392 bytes, found " +
                    std::to_string(fileBytes));
   const std::uint32_t version = le32(p + 8);
-  if (version < 1 || version > 2)
-    fail(name, "unsupported format version " + std::to_string(version) + " (this build reads 1 to 2)");
+  if (version < 1 || version > 3)
+    fail(name, "unsupported format version " + std::to_string(version) + " (this build reads 1 to 3)");
   const std::uint32_t headerBytes = le32(p + 12);
   if (headerBytes < kMinHeaderBytes || headerBytes > kMaxHeaderBytes || headerBytes % 8 != 0)
     fail(name, "corrupt header (header size " + std::to_string(headerBytes) + ")");
@@ -196,6 +213,7 @@ inline void parseHeader(const std::uint8_t* p, std::size_t headerBytes, const st
   if (fnv1a64(p, headerBytes - 8) != le(p + headerBytes - 8, 8))
     fail(name, "header checksum mismatch");
   const std::uint32_t version = le32(p + 8);
+  lut.version = version;
   for (std::size_t k = 0; k < 4; ++k) lut.dims[k] = le32(p + 16 + 4 * k);
   const std::uint32_t channels = le32(p + 32);
   const std::uint32_t type = le32(p + 36);
@@ -213,7 +231,13 @@ inline void parseHeader(const std::uint8_t* p, std::size_t headerBytes, const st
     axis.unit = fixedString(a + 16, 8, name, "axis unit");
     axis.min = leF64(a + 24);
     axis.max = leF64(a + 32);
-    axis.periodic = (le32(a + 40) & 1u) != 0;
+    const std::uint32_t flags = le32(a + 40);
+    // bit 0 periodic; version 3: bit 1 folded, bit 2 interpolated linearly in 2^value
+    if ((flags & ~(version >= 3 ? 7u : 1u)) != 0 || (flags & 3u) == 3u)
+      fail(name, "corrupt header (axis flags)");
+    axis.periodic = (flags & 1u) != 0;
+    axis.folded = (flags & 2u) != 0;
+    axis.linearInExp2 = (flags & 4u) != 0;
     const std::uint32_t warpBits = le32(a + 44);
     std::memcpy(&axis.warp, &warpBits, sizeof axis.warp);
     if (!(axis.warp >= 0.0f && axis.warp <= 20.0f) || (version < 2 && warpBits != 0))

@@ -283,9 +283,9 @@ inline Manifest readManifest(const std::string& dir) {
   const Json* version = m.document.find("version");
   if (version == nullptr || version->type != Json::Type::Number)
     detail::fail(path, "manifest has no \"version\"");
-  if (version->number != 1.0 && version->number != 2.0)
+  if (version->number != 1.0 && version->number != 2.0 && version->number != 3.0)
     detail::fail(path, "unsupported manifest version " + std::to_string(version->number) +
-                           " (this reader reads 1 to 2)");
+                           " (this reader reads 1 to 3)");
   m.version = static_cast<int>(version->number);
   if (const Json* g = m.document.find("generator"); g && g->type == Json::Type::String)
     m.generator = g->string;

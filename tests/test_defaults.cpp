@@ -19,7 +19,10 @@ TEST_CASE("defaults are the seed's", "[defaults]") {
   CHECK(defaults::kUnitOpticalRadius == 0.07 * 183.8);
   CHECK(defaults::kDensitySlopeMin == -4);
   CHECK(defaults::kDensitySlopeMax == 3);
-  CHECK(defaults::kScatteringDims == std::array<int, 4>{32, 64, 16, 8});
+  // φv folded onto [0, π] (33 nodes at the spacing of the seed's 64 over [0, 2π]), two slices
+  // per octave; the table stays within the seed's 32·64·16·8 samples
+  CHECK(defaults::kScatteringDims == std::array<int, 4>{32, 33, 16, 15});
+  CHECK(32 * 33 * 16 * 15 <= 32 * 64 * 16 * 8);
   CHECK(defaults::kOpticalDepthDims == std::array<int, 4>{64, 32, 64, 32});
   CHECK(defaults::kScatteringOrders == 18);
   CHECK(defaults::kFirstPhase == Phase{PhaseKind::CornetteShanks, 0.9f});

@@ -114,7 +114,7 @@ TEST_CASE("io: binary header follows the documented layout", "[io]") {
   const std::string b = readFile(dir / "t.bin");
   const char* p = b.data();
   REQUIRE(b.compare(0, 8, "CLOUDLUT") == 0);
-  REQUIRE(getU32(p + 8) == 2);
+  REQUIRE(getU32(p + 8) == 3);
   const std::uint32_t headerBytes = getU32(p + 12);
   REQUIRE(headerBytes % 8 == 0);
   REQUIRE(getU32(p + 16) == 6);

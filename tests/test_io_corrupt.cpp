@@ -84,7 +84,7 @@ TEST_CASE("io: an unsupported format version is named", "[io]") {
   std::string bad = goodFile(dir);
   bad[8] = 7;
   REQUIRE_THAT(errorFor(dir, bad),
-               Catch::EndsWith("unsupported format version 7 (this build reads 1 to 2)"));
+               Catch::EndsWith("unsupported format version 7 (this build reads 1 to 3)"));
 }
 
 TEST_CASE("io: empty, missing and foreign files are not LUTs", "[io]") {

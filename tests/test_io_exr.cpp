@@ -69,7 +69,7 @@ TEST_CASE("io: EXR atlas layout and attributes", "[io]") {
   REQUIRE(file.header().channels().findChannel("R")->type == Imf::FLOAT);
   const auto* version = file.header().findTypedAttribute<Imf::IntAttribute>("cloudlutVersion");
   REQUIRE(version != nullptr);
-  REQUIRE(version->value() == 2);
+  REQUIRE(version->value() == 3);
   const auto* json = file.header().findTypedAttribute<Imf::StringAttribute>("cloudlut");
   REQUIRE(json != nullptr);
   REQUIRE(nlohmann::json::parse(json->value()) ==
@@ -173,6 +173,6 @@ TEST_CASE("io: damaged EXR files give FileError", "[io]") {
       out.writePixels(height);
     }
     REQUIRE_THAT(fileErrorOf([&] { cloudlut::io::readLut(dir / "v7.exr"); }),
-                 Catch::Contains("unsupported format version 7 (this build reads 1 to 2)"));
+                 Catch::Contains("unsupported format version 7 (this build reads 1 to 3)"));
   }
 }

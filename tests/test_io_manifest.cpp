@@ -80,10 +80,10 @@ TEST_CASE("io: readLutSet reports bad manifests", "[io]") {
     REQUIRE_THAT(fileErrorOf([&] { cloudlut::io::readLutSet(dir.path()); }),
                  Catch::Contains("not a cloudlut manifest"));
     m["format"] = "cloudlut-lut-set";
-    m["version"] = 3;
+    m["version"] = 4;
     cloudlut::io::writeManifest(dir.path(), m);
     REQUIRE_THAT(fileErrorOf([&] { cloudlut::io::readLutSet(dir.path()); }),
-                 Catch::Contains("unsupported manifest version 3 (this build reads 1 to 2)"));
+                 Catch::Contains("unsupported manifest version 4 (this build reads 1 to 3)"));
     m["version"] = 1;
     m.erase("tables");
     cloudlut::io::writeManifest(dir.path(), m);

@@ -172,7 +172,7 @@ TEST_CASE("io: header-only reader rejects damaged files with the file name", "[i
   REQUIRE_THAT(errorFor(flipped), Catch::EndsWith("checksum mismatch"));
   std::string version = good;
   version[8] = 7;
-  REQUIRE_THAT(errorFor(version), Catch::EndsWith("unsupported format version 7 (this build reads 1 to 2)"));
+  REQUIRE_THAT(errorFor(version), Catch::EndsWith("unsupported format version 7 (this build reads 1 to 3)"));
   for (std::size_t n = 1; n < good.size(); n += 3) errorFor(good.substr(0, n));
   const std::uint32_t headerBytes = cloudlut::io::getU32(good.data() + 12);
   for (std::size_t k = 0; k < headerBytes; ++k) {
@@ -213,7 +213,7 @@ TEST_CASE("io: header-only reader lists the manifest's tables", "[io]") {
   REQUIRE(u.binFile.empty());
   REQUIRE(u.exrFile == "multiple_scattering.exr");
 
-  writeFile(dir / "manifest.json", "{\"format\":\"cloudlut-lut-set\",\"version\":3,\"tables\":{}}");
+  writeFile(dir / "manifest.json", "{\"format\":\"cloudlut-lut-set\",\"version\":4,\"tables\":{}}");
   REQUIRE_THAT(runtimeErrorOf([&] { cloudlut_reader::readManifest(dir.path().string()); }),
                Catch::Contains("unsupported manifest version"));
   writeFile(dir / "manifest.json", "{\"format\":\"cloudlut-lut-set\",");

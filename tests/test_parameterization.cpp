@@ -2,6 +2,7 @@
 // geometry → LUT angles → geometry round trips, including the poles and grazing rays.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -122,6 +123,44 @@ TEST_CASE("texture coordinates hit texel centres at both ends of an axis", "[par
   CHECK(densityAxis(1.0f, -4.0f, 3.0f) == Approx(4.0f / 7.0f));
 }
 
+TEST_CASE("folded azimuth and the density axis interpolated linearly in rho", "[parameterization]") {
+  // mirroredAzimuth: φ and 2π − φ share a node; [0, π] is left alone
+  for (float phi : {0.0f, 0.7f, 3.0f, 3.1415f})
+    CHECK(mirroredAzimuth(phi) == Approx(phi));
+  CHECK(mirroredAzimuth(4.0f) == Approx(2.0f * 3.14159265f - 4.0f));
+  CHECK(mirroredAzimuth(6.28f) == Approx(0.0031853f).margin(1e-5));
+  // densityAxisLinearInRho: at the nodes it is densityAxis; between two nodes the weight of the
+  // upper one is (ρ − ρ_i)/(ρ_{i+1} − ρ_i), written out here from the node densities.
+  const float sMin = -4.0f, sMax = 3.0f, n = 15.0f;
+  for (int i = 0; i < 15; ++i) {
+    const float rho = std::exp2(sMin + 0.5f * static_cast<float>(i));
+    CHECK(densityAxisLinearInRho(rho, sMin, sMax, n) == Approx(densityAxis(rho, sMin, sMax)).margin(1e-5));
+  }
+  for (float s : {-3.9f, -1.2f, 0.3f, 2.8f}) {
+    const float lo = std::floor(s * 2.0f) / 2.0f, rho = std::exp2(s);
+    const float w = (rho - std::exp2(lo)) / (std::exp2(lo + 0.5f) - std::exp2(lo));
+    const float x = ((lo - sMin) * 2.0f + w) / (n - 1.0f);
+    CHECK(densityAxisLinearInRho(rho, sMin, sMax, n) == Approx(x).margin(1e-5));
+  }
+  CHECK(densityAxisLinearInRho(100.0f, sMin, sMax, n) == Approx(1.0f));
+  CHECK(densityAxisLinearInRho(1e-4f, sMin, sMax, n) == Approx(0.0f));
+  // scatteringAxes: a folded table's φv axis is mirroredAzimuth(φv)/π, an unfolded one φv/2π; a
+  // view mirrored about the plane of S and l lands on the same folded fraction.
+  const glm::vec3 S(0.6f, 0.0f, 0.8f), l(0.0f, 0.0f, 1.0f);
+  const glm::vec3 v = glm::normalize(glm::vec3(-0.5f, 0.4f, -0.6f)), vm(v.x, -v.y, v.z);
+  const glm::vec4 a = scatteringAxes(S, v, l, 1.0f, glm::vec4(-4.0f, 3.0f, 0.0f, 1.0f), 15.0f);
+  const glm::vec4 b = scatteringAxes(S, vm, l, 1.0f, glm::vec4(-4.0f, 3.0f, 0.0f, 1.0f), 15.0f);
+  const glm::vec4 c = scatteringAxes(S, v, l, 1.0f, glm::vec4(-4.0f, 3.0f, 0.0f, 0.0f), 15.0f);
+  const glm::vec4 d = scatteringAxes(S, vm, l, 1.0f, glm::vec4(-4.0f, 3.0f, 0.0f, 0.0f), 15.0f);
+  CHECK(a.y == Approx(b.y).margin(1e-5));
+  CHECK(c.y + d.y == Approx(1.0f).margin(1e-5));
+  CHECK(a.y == Approx(2.0f * std::min(c.y, d.y)).margin(1e-5));
+  // layout 2 (linear in ρ) changes only the density fraction
+  const glm::vec4 e = scatteringAxes(S, v, l, 1.5f, glm::vec4(-4.0f, 3.0f, 0.0f, 3.0f), 15.0f);
+  CHECK(e.y == Approx(a.y));
+  CHECK(e.w == Approx(densityAxisLinearInRho(1.5f, -4.0f, 3.0f, 15.0f)));
+}
+
 TEST_CASE("concentrated axes: the nodes, their inverse, and the theta_s concentration the baker picks", "[parameterization]") {
   // y = 1/2 + sinh(w (x − 1/2)) / (2 sinh(w/2)) written out here, not through the shared GLSL
   for (double w : {0.0, 3.0, 7.0, 12.0})
@@ -146,8 +185,8 @@ TEST_CASE("concentrated axes: the nodes, their inverse, and the theta_s concentr
     cloudlut::Axis a{"theta_s", "rad", 0.0, kPi, n, false, w};
     for (int i = 0; i < n; ++i) {
       const auto node = cloudlut::bake::scatteringNode(a.value(i), 0.3, 0.4);
-      const glm::vec4 x = scatteringAxes(glm::vec3(node.S), glm::vec3(node.v), glm::vec3(node.l), 1.0f, 0.0f, 1.0f,
-                                               static_cast<float>(w));
+      const glm::vec4 x = scatteringAxes(glm::vec3(node.S), glm::vec3(node.v), glm::vec3(node.l), 1.0f,
+                                         glm::vec4(0.0f, 1.0f, static_cast<float>(w), 0.0f), 2.0f);
       CHECK(x.x * static_cast<float>(n - 1) == Approx(i).margin(2e-3));
     }
   }

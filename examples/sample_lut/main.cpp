@@ -2,6 +2,7 @@
 // CPU code would (the shaders do the same with cloudlut_sampling.glsl).
 //   usage: sample_lut LUT_DIR [density]
 // The ray enters the particle (the unit sphere) at S and travels along v; l points to the sun.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,10 +27,12 @@ double described(const cloudlut_reader::Lut& lut, const char* a, const char* b, 
 }
 
 // Samples a scattering table (θS, φv, θv, log2 ρ) at the ray: axis fractions from the shared
-// GLSL, with the θS node concentration ("warp") and density range of the file.
+// GLSL, with the file's axes record (density range, θS node concentration "warp", and the
+// layout: φv folded onto [0, π], density interpolated linearly in ρ) and density node count.
 float sampleScattering(const cloudlut_reader::Lut& t, glm::vec3 S, glm::vec3 v, glm::vec3 l, float rho) {
-  const glm::vec4 x = cloudlut::glsl::scatteringAxes(S, v, l, rho, static_cast<float>(t.axes[3].min),
-                                                     static_cast<float>(t.axes[3].max), t.axes[0].warp);
+  const std::array<float, 4> a = t.scatteringAxesRecord();
+  const glm::vec4 x = cloudlut::glsl::scatteringAxes(S, v, l, rho, glm::vec4(a[0], a[1], a[2], a[3]),
+                                                     static_cast<float>(t.dims[3]));
   float value = 0.0f;
   t.sample(x.x, x.y, x.z, x.w, &value);
   return value;

@@ -128,11 +128,49 @@ CLOUDLUT_FN float concentratedAxis(float y, float w) {
   return clamp(0.5f + asinh((y - 0.5f) * 2.0f * sinh(0.5f * w)) / w, 0.0f, 1.0f);
 }
 
-// Axis fractions of the scattering tables: (θS axis, φv/2π, θv/(π/2), density axis). The θS
-// nodes concentrate about the terminator θS = π/2 (concentratedAxis(θS/π, warpS), warpS the
-// table's θS "warp"), where the light of a dense particle changes over an angle ≈ 1/σ.
-CLOUDLUT_FN vec4 scatteringAxes(vec3 S, vec3 v, vec3 l, float rho, float sMin, float sMax, float warpS) {
+// Azimuth folded by a mirror symmetry about the plane φ = 0: φ ∈ [0, 2π) → [0, π], radians.
+// The homogeneous sphere's light is symmetric about the plane that holds S and l, so the
+// scattering tables' mean sources satisfy J(φv) = J(2π − φv) and a folded table stores φv ∈ [0, π].
+CLOUDLUT_FN float mirroredAzimuth(float phi) {
+  return phi > CLOUDLUT_PI ? 2.0f * CLOUDLUT_PI - phi : phi;
+}
+
+// Density-scale axis of n nodes uniform in s = log2 ρ over [sMin, sMax], interpolated linearly
+// in ρ between neighbouring nodes: for ρ between the nodes s_i and s_i + h (h = (sMax − sMin)/(n − 1))
+// the weight of the upper node is w = (2^{s − s_i} − 1) / (2^h − 1) = (ρ − ρ_i)/(ρ_{i+1} − ρ_i),
+// and the axis fraction is (i + w)/(n − 1), so the linear filter of cloudlutSample4D blends the
+// two slices with that weight. Exact for stored values affine in ρ: the log2 mean sun
+// transmittance of single scattering is, both where it is −σρ·(mean sun path) (thin particles,
+// the dark side) and where it tends to a constant (the lit side of dense ones). Dimensionless.
+CLOUDLUT_FN float densityAxisLinearInRho(float rho, float sMin, float sMax, float n) {
+  float x = densityAxis(rho, sMin, sMax);
+  if (n < 2.5f) return x;
+  float p = x * (n - 1.0f);
+  float i = min(floor(p), n - 2.0f);
+  float h = (sMax - sMin) / (n - 1.0f);
+  float w = (exp2((p - i) * h) - 1.0f) / max(exp2(h) - 1.0f, 1e-6f);
+  return (i + clamp(w, 0.0f, 1.0f)) / (n - 1.0f);
+}
+
+// Layout flags of a scattering table (the sum of them is the 4th component of its axes record;
+// FORMAT.md, axis flags): φv folded onto [0, π] (mirroredAzimuth), density axis interpolated
+// linearly in ρ (densityAxisLinearInRho). Format version 3 bakes set both; 0 is the layout of
+// versions 1 and 2 (φv over [0, 2π], density interpolated linearly in log2 ρ).
+const float CLOUDLUT_LAYOUT_FOLDED_PHI_V = 1.0f;
+const float CLOUDLUT_LAYOUT_LINEAR_IN_RHO = 2.0f;
+
+// Axis fractions of the scattering tables: (θS axis, φv axis, θv/(π/2), density axis), for the
+// table's axes record axes = (sMin, sMax, warpS, layout) and its number of density nodes n.
+// The θS nodes concentrate about the terminator θS = π/2 (concentratedAxis(θS/π, warpS), warpS
+// the table's θS "warp"), where the light of a dense particle changes over an angle ≈ 1/σ; the
+// φv axis is φv/π when folded (mirroredAzimuth), φv/2π otherwise; the density axis is
+// densityAxisLinearInRho when the layout says so, densityAxis otherwise.
+CLOUDLUT_FN vec4 scatteringAxes(vec3 S, vec3 v, vec3 l, float rho, vec4 axes, float n) {
   vec3 a = scatteringAngles(S, v, l);
-  return vec4(concentratedAxis(a.x / CLOUDLUT_PI, warpS), a.y / (2.0f * CLOUDLUT_PI),
-              min(a.z, 0.5f * CLOUDLUT_PI) / (0.5f * CLOUDLUT_PI), densityAxis(rho, sMin, sMax));
+  bool folded = mod(axes.w, 2.0f) >= 0.5f;
+  bool linearInRho = axes.w >= 1.5f;
+  float phi = folded ? mirroredAzimuth(a.y) / CLOUDLUT_PI : a.y / (2.0f * CLOUDLUT_PI);
+  float d = linearInRho ? densityAxisLinearInRho(rho, axes.x, axes.y, n) : densityAxis(rho, axes.x, axes.y);
+  return vec4(concentratedAxis(a.x / CLOUDLUT_PI, axes.z), phi,
+              min(a.z, 0.5f * CLOUDLUT_PI) / (0.5f * CLOUDLUT_PI), d);
 }

@@ -53,8 +53,9 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
   const ScatteringStorage storage1 = single ? scatteringStorage(*single) : ScatteringStorage::Log2MeanSource;
   const ScatteringStorage storageM = multiple ? scatteringStorage(*multiple) : ScatteringStorage::MeanSource;
   const Axis& dAx = t->axes()[3];
-  const float warp1 = single ? static_cast<float>(single->axes()[0].warp) : 0.0f;
-  const float warpM = multiple ? static_cast<float>(multiple->axes()[0].warp) : 0.0f;
+  // axes records (density range irrelevant: the slice is addressed by its node fraction below)
+  const glm::vec4 axes1 = single ? scatteringAxesRecord(*single) : glm::vec4(0.0f);
+  const glm::vec4 axesM = multiple ? scatteringAxesRecord(*multiple) : glm::vec4(0.0f);
   const int nSlices = dAx.size;
   // Quadrature: θS composite Gauss 8×8; α (angle between v and l) = π ξ², composite 12×8 in ξ;
   // β (azimuth of v about l) midpoints over [0, π], doubled by symmetry.
@@ -97,12 +98,12 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
           const float tau = static_cast<float>(sigma) * 2.0f * cosV;
           float val = 0.0f;
           if (single) {
-            const glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, 0.0f, 1.0f, warp1);
+            const glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, axes1, 2.0f);
             single->sample({x.x, x.y, x.z, wFrac}, &val);
             b1 += static_cast<double>(scatteringFromStored(storage1, val, tau)) * cosV;
           }
           if (multiple) {
-            const glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, 0.0f, 1.0f, warpM);
+            const glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, axesM, 2.0f);
             multiple->sample({x.x, x.y, x.z, wFrac}, &val);
             bm += static_cast<double>(scatteringFromStored(storageM, val, tau)) * cosV;
           }

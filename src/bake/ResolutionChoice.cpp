@@ -152,7 +152,7 @@ ScatteringChoice chooseScatteringResolution(const ScatteringSettings& settings, 
     return std::array<double, 2>{p95(false), p95(true)};
   };
   ScatteringChoice choice{};
-  const std::array<std::array<int, 3>, 5> ladder{{{16, 32, 8}, {24, 48, 12}, {32, 64, 16}, {48, 96, 24}, {64, 128, 32}}};
+  const std::array<std::array<int, 3>, 5> ladder{{{16, 17, 8}, {24, 25, 12}, {32, 33, 16}, {48, 49, 24}, {64, 65, 32}}};
   for (const auto& d : ladder) {
     choice.dims = {d[0], d[1], d[2], octaves + 1};
     choice.slicesPerOctave = 1;

@@ -52,11 +52,11 @@ struct ScatteringChoice {
 // interpolation error, over 1500 random rays as a camera sees them (rows carrying at least 1%
 // of the mean), at or below `tolerance`, against L1 integrated directly along each ray. L1 is
 // the sharpest of the two tables (the terminator); the multiple table takes the same
-// resolution. Two steps: the smallest θS × φv × θv of the ladder 16×32×8 … 64×128×32 (the
-// default 32×64×16 in the middle) within the tolerance at the slices' densities, then the
-// fewest density slices per octave (1, 2, 4, 8; the default is 1) within it at densities
-// log-uniform over the range — between slices the density interpolation dominates (p95 19%,
-// 5.4%, 2.2% at 1, 2, 4 per octave at 32×64×16). Falls back to the largest candidate that a GL
+// resolution. Two steps: the smallest θS × φv × θv of the ladder 16×17×8 … 64×65×32 (φv folded
+// onto [0, π]; the default 32×33×16 in the middle) within the tolerance at the slices'
+// densities, then the fewest density slices per octave (1, 2, 4, 8; the default is 2) within
+// it at densities log-uniform over the range, where the density interpolation (linear in ρ,
+// densityAxisLinearInRho) adds to the angular error. Falls back to the largest candidate that a GL
 // 3D texture holds (θv × slices ≤ 2048), with its error.
 ScatteringChoice chooseScatteringResolution(const ScatteringSettings& settings, double tolerance);
 

@@ -44,10 +44,12 @@ void validate(const ScatteringSettings& s) {
 
 Table4D makeTable(const ScatteringSettings& s, const char* name, const char* channel, const char* meaning) {
   const auto& d = s.dims;
+  // φv over [0, π] (folded, mirroredAzimuth) or [0, 2π] (periodic); density interpolated
+  // linearly in ρ between the slices (densityAxisLinearInRho, cloudlut_geometry.glsl).
   std::array<Axis, 4> axes{Axis{"theta_s", "rad", 0.0, kPi, d[0], false, sunZenithWarp(d[0])},
-                           Axis{"phi_v", "rad", 0.0, 2.0 * kPi, d[1], true},
+                           Axis{"phi_v", "rad", 0.0, s.foldPhiV ? kPi : 2.0 * kPi, d[1], !s.foldPhiV, 0.0, s.foldPhiV},
                            Axis{"theta_v", "rad", 0.0, 0.5 * kPi, d[2], false},
-                           Axis{"log2_density", "log2", s.sMin, s.sMax, d[3], false}};
+                           Axis{"log2_density", "log2", s.sMin, s.sMax, d[3], false, 0.0, false, s.densityLinearInRho}};
   Table4D t(name, axes, {{channel, meaning}});
   auto& p = t.parameters();
   p["extinction_per_m"] = s.extinction;

@@ -41,6 +41,12 @@ struct ScatteringSettings {
   int orders = defaults::kScatteringOrders;  // highest order in the multiple table; <= 0 means converged (2 … ∞)
   ScatteringMethod method = ScatteringMethod::Fast;
   bool single = true, multiple = true;
+  // Store φv over [0, π] only (axis 1 folded; dims[1] nodes over [0, π]): the homogeneous
+  // sphere's light is mirror-symmetric about the plane of S and l. false: over [0, 2π] (periodic).
+  bool foldPhiV = true;
+  // Interpolate between the density slices linearly in ρ (axis 3 flagged linearInExp2,
+  // densityAxisLinearInRho); false: linearly in log2 ρ, the layout of format versions 1–2.
+  bool densityLinearInRho = true;
 };
 
 struct ScatteringResult {

@@ -68,7 +68,10 @@ void bakePaperMultipleScattering(const ScatteringSettings& settings, Table4D& ta
                                  nlohmann::json& slices, const ProgressFn& progress,
                                  double progressBase, double progressSpan) {
   const auto& d = settings.dims;
-  const Volume vol{d[0], d[1], 2 * (d[2] - 1) + 1, d[2]};
+  // The seed's volume covers φv ∈ [0, 2π]: a folded table's dims[1] nodes over [0, π] become
+  // 2·(dims[1] − 1) + 1 at the same spacing.
+  const int nPhi = table.axes()[1].folded ? 2 * (d[1] - 1) + 1 : d[1];
+  const Volume vol{d[0], nPhi, 2 * (d[2] - 1) + 1, d[2]};
   const int steps = 2 * d[2];
   const glm::dvec3 l(0, 0, 1);
   const std::size_t N = vol.size();

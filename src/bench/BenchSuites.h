@@ -23,6 +23,11 @@ void benchOpticalDepth(BenchReport& report, const BenchOptions& options);
 // reference of the homogeneous sphere, with the energy balance of every bake.
 void benchScattering(BenchReport& report, const BenchOptions& options, const std::filesystem::path& out);
 
+// Scattering-table layout (TableLayoutBench.cpp): bytes against the single-scattering error on
+// and between the density slices, for folded or full φv, slices per octave and the density
+// interpolation; Monte Carlo reference. BenchRow::steps holds the bytes of one table (half).
+void benchTableLayout(BenchReport& report, const BenchOptions& options);
+
 // Renderer II: cloudscapes per quality preset and blend mode, ms per stage (generation,
 // occlusion, shading + blending, upscale) and frame-to-frame stability (RenderBench.cpp).
 void benchRender(BenchReport& report, const BenchOptions& options);

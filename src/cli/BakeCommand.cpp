@@ -62,7 +62,8 @@ std::string dimsText(const std::array<int, 4>& d) {
 // Validates and fills the scattering settings; every bad value is a UsageError.
 void configureScattering(bake::ScatteringSettings& sc, const cxxopts::ParseResult& args) {
   sc.dims = parseDims(args["res-sc"].as<std::string>(), "res-sc");
-  const std::vector<int> s = parseIntList(args["densities"].as<std::string>(), "densities");
+  const std::string densities = args["densities"].as<std::string>();
+  const std::vector<int> s = parseIntList(densities, "densities");
   if (s.size() < 2) throw UsageError("--densities: at least two density slices are needed");
   for (std::size_t i = 2; i < s.size(); ++i)
     if (s[i] - s[i - 1] != s[1] - s[0] || s[1] <= s[0])
@@ -72,6 +73,10 @@ void configureScattering(bake::ScatteringSettings& sc, const cxxopts::ParseResul
   sc.sMin = s.front();
   sc.sMax = s.back();
   sc.dims[3] = static_cast<int>(s.size());
+  // a range a:b has --slices-per-octave slices per octave (a list sets every slice itself)
+  const int perOctave = args["slices-per-octave"].as<int>();
+  if (perOctave < 1 || perOctave > 64) throw UsageError("--slices-per-octave: expected 1 to 64, got " + std::to_string(perOctave));
+  if (densities.find(':') != std::string::npos) sc.dims[3] = (s.back() - s.front()) * perOctave + 1;
   const PhasePair phases = parsePhaseOptions(args).value();  // --phase has a default
   sc.firstPhase = phases.first;
   sc.laterPhase = phases.later;
@@ -100,6 +105,7 @@ int runBake(int argc, char** argv) {
     ("res-sc", "scattering table dimensions theta_s,phi_v,theta_v,density", cxxopts::value<std::string>()->default_value(dimsText(defaults::kScatteringDims)))
     ("densities", "density slices as log2 rho: a range a:b or an evenly spaced list a,b,c (sets the 4th dimension)",
      cxxopts::value<std::string>()->default_value(std::to_string(defaults::kDensitySlopeMin) + ":" + std::to_string(defaults::kDensitySlopeMax)))
+    ("slices-per-octave", "density slices per octave of a --densities range", cxxopts::value<int>()->default_value(std::to_string(defaults::kDensitySlicesPerOctave)))
     ("orders", "highest scattering order in the multiple table, or 'converged' for all of them", cxxopts::value<std::string>()->default_value(std::to_string(defaults::kScatteringOrders)))
     ("method", "scattering method: fast (ours) or paper (the seed's algorithm, slow)", cxxopts::value<std::string>()->default_value("fast"))
     ("for-scene", "bake only what a scene needs (particle JSON, cloudscape preset or file): its density range, and the smallest optical-depth and scattering tables within --tolerance; overrides --densities, --res-od and --res-sc", cxxopts::value<std::string>())

@@ -64,9 +64,12 @@ void printTable(const nlohmann::json& d) {
   for (const auto& a : d["axes"]) {
     const double warp = a.value("warp", 0.0);
     const std::string warpText = warp > 0.0 ? ", nodes concentrated about the middle (warp " + formatNumber(warp) + ")" : "";
-    std::printf("  axis %d    %-8s [%g, %g] %s, %d nodes%s%s\n", k++, a.value("name", std::string()).c_str(),
+    // version 3 layout flags (FORMAT.md section 1)
+    const std::string layout = std::string(a.value("folded", false) ? ", folded (mirror-symmetric about its max)" : "") +
+                               (a.value("linear_in_exp2", false) ? ", interpolated linearly in 2^value" : "");
+    std::printf("  axis %d    %-8s [%g, %g] %s, %d nodes%s%s%s\n", k++, a.value("name", std::string()).c_str(),
                 a.value("min", 0.0), a.value("max", 0.0), a.value("unit", std::string()).c_str(),
-                a.value("size", 0), a.value("periodic", false) ? ", periodic" : "", warpText.c_str());
+                a.value("size", 0), a.value("periodic", false) ? ", periodic" : "", warpText.c_str(), layout.c_str());
   }
   for (const auto& s : d["statistics"]) {
     std::printf("  channel   %-13s min %.6g  max %.6g  mean %.6g%s\n      %s\n", s["name"].get<std::string>().c_str(),

@@ -18,7 +18,12 @@ inline constexpr double kUnitOpticalRadius = kExtinctionPerMetre * kParticleRadi
 inline constexpr int kDensitySlopeMin = -4;  // ρ = 2^s, s = -4 ... 3
 inline constexpr int kDensitySlopeMax = 3;
 inline constexpr std::array<int, 4> kOpticalDepthDims = {64, 32, 64, 32};  // φS, θS, φv, θv
-inline constexpr std::array<int, 4> kScatteringDims = {32, 64, 16, 8};  // θS, φv, θv, ρ
+// Scattering tables (θS, φv, θv, ρ): φv folded onto [0, π] by the sphere's mirror symmetry
+// (33 nodes, 5.6° apart, the spacing of the seed's 64 over [0, 2π]) and two density slices per
+// octave (15 over s = −4 … 3): 32·33·16·15 fp16 = 495 KiB, within the seed's 32·64·16·8 (512 KiB).
+inline constexpr int kDensitySlicesPerOctave = 2;
+inline constexpr std::array<int, 4> kScatteringDims = {
+    32, 33, 16, (kDensitySlopeMax - kDensitySlopeMin) * kDensitySlicesPerOctave + 1};
 inline constexpr int kScatteringOrders = 18;
 inline constexpr float kFirstScatteringG = 0.9f;  // Cornette–Shanks g for sunlight's first bounce
 inline constexpr float kMultipleScatteringG = 0.7f;  // ... and for every later one

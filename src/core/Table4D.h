@@ -27,6 +27,15 @@ struct Axis {
   // Concentration of the nodes about the middle of the axis (concentratedFraction in
   // cloudlut_geometry.glsl); 0 = uniformly spaced nodes.
   double warp = 0.0;
+  // Mirror symmetry (format version 3): the table's quantity is symmetric about the axis's max,
+  // value(max + d) = value(max − d), and only [min, max] is stored; a query beyond max samples
+  // at 2·max − x (the scattering tables' φv over [0, π], mirroredAzimuth in
+  // cloudlut_geometry.glsl).
+  bool folded = false;
+  // Interpolation (format version 3): the axis is a log2 (nodes uniform in s) and the table is
+  // interpolated between two neighbouring nodes linearly in 2^s, not in s (the scattering
+  // tables' density axis: linear in ρ, densityAxisLinearInRho in cloudlut_geometry.glsl).
+  bool linearInExp2 = false;
   // The physical value at node i: min + (max − min) · concentratedFraction(i / (size − 1), warp).
   double value(int i) const;
 };

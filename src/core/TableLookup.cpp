@@ -39,13 +39,19 @@ ScatteringStorage scatteringStorage(const Table4D& table) {
                              kMultipleScatteringChannel + "'): re-bake it");
 }
 
+glm::vec4 scatteringAxesRecord(const Table4D& table) {
+  const auto& ax = table.axes();
+  const float layout = (ax[1].folded ? glsl::CLOUDLUT_LAYOUT_FOLDED_PHI_V : 0.0f) +
+                       (ax[3].linearInExp2 ? glsl::CLOUDLUT_LAYOUT_LINEAR_IN_RHO : 0.0f);
+  return {static_cast<float>(ax[3].min), static_cast<float>(ax[3].max), static_cast<float>(ax[0].warp), layout};
+}
+
 namespace {
 
 // The stored value at the geometry, for a table whose storage is known to be valid.
 float sampleStored(const Table4D& table, const glm::vec3& S, const glm::vec3& v, const glm::vec3& l, float rho) {
-  const Axis& d = table.axes()[3];
-  const glm::vec4 x = glsl::scatteringAxes(S, v, l, rho, static_cast<float>(d.min), static_cast<float>(d.max),
-                                           static_cast<float>(table.axes()[0].warp));
+  const glm::vec4 x = glsl::scatteringAxes(S, v, l, rho, scatteringAxesRecord(table),
+                                           static_cast<float>(table.axes()[3].size));
   float value = 0.0f;
   table.sample({x.x, x.y, x.z, x.w}, &value);
   return value;

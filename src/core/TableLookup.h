@@ -3,6 +3,7 @@
 // (quadrilinear over the nodes; see Table4D::sample). Shared by `query`, the renderer's
 // tests and the accuracy tests.
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "core/Table4D.h"
 
@@ -33,6 +34,12 @@ enum class ScatteringStorage { Log2MeanSource, MeanSource };
 // The storage of a scattering table; throws std::runtime_error naming the table unless it is a
 // scattering table of this cloudlut version (older versions stored radiance: re-bake them).
 ScatteringStorage scatteringStorage(const Table4D& table);
+
+// The axes record of a scattering table for scatteringAxes() (cloudlut_geometry.glsl):
+// (log2 ρ at the first and last density node, θS warp, layout flags: CLOUDLUT_LAYOUT_FOLDED_PHI_V
+// if axis 1 is folded + CLOUDLUT_LAYOUT_LINEAR_IN_RHO if axis 3 is interpolated linearly in 2^s).
+// The renderer passes the same vector to its shaders.
+glm::vec4 scatteringAxesRecord(const Table4D& table);
 
 // The stored value (channel 0) of a scattering table (θS, φv, θv, log2 ρ) at the
 // geometry (S, v, l) and density rho; rho outside the table's range is clamped to it.

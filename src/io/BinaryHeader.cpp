@@ -69,7 +69,8 @@ std::string encodeHeader(const Table4D& table, SampleType type, std::uint64_t pa
     putFixedString(h, a.unit, kAxisUnitBytes);
     putF64(h, a.min);
     putF64(h, a.max);
-    putU32(h, a.periodic ? kAxisPeriodic : 0u);
+    putU32(h, (a.periodic ? kAxisPeriodic : 0u) | (a.folded ? kAxisFolded : 0u) |
+                  (a.linearInExp2 ? kAxisLinearInExp2 : 0u));
     putU32(h, std::bit_cast<std::uint32_t>(static_cast<float>(a.warp)));
   }
   for (std::size_t c = 0; c < kMaxChannels; ++c)
@@ -127,6 +128,8 @@ Header parseHeader(std::string_view bytes, const std::filesystem::path& path) {
            "; lut_formats/FORMAT.md says they are 0)");
     if (!(r.warp >= 0.0f && r.warp <= kMaxAxisWarp) || (h.version < 2 && r.warp != 0.0f))
       fail("corrupt header (axis " + std::to_string(k) + " node concentration)");
+    if ((r.flags & ~axisFlagsOf(h.version)) != 0 || ((r.flags & kAxisPeriodic) && (r.flags & kAxisFolded)))
+      fail("corrupt header (axis " + std::to_string(k) + " flags " + std::to_string(r.flags) + ")");
     if (h.dims[k] < 1) fail("corrupt header (axis " + std::to_string(k) + " has no nodes)");
   }
   for (std::size_t c = 0; c < h.channelCount; ++c) {

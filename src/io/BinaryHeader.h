@@ -33,6 +33,12 @@ inline constexpr std::size_t kJsonOffset = 380;
 inline constexpr std::size_t kMinHeaderBytes = 392;   // no JSON: 380 → padded 384, + checksum
 inline constexpr std::size_t kMaxJsonBytes = 16u << 20;  // sanity bound for readers
 inline constexpr std::uint32_t kAxisPeriodic = 1u;
+inline constexpr std::uint32_t kAxisFolded = 2u;        // version 3: Axis::folded
+inline constexpr std::uint32_t kAxisLinearInExp2 = 4u;  // version 3: Axis::linearInExp2
+// The flag bits a reader of each version accepts (others: corrupt header).
+inline constexpr std::uint32_t axisFlagsOf(std::uint32_t version) {
+  return version >= 3 ? kAxisPeriodic | kAxisFolded | kAxisLinearInExp2 : kAxisPeriodic;
+}
 inline constexpr float kMaxAxisWarp = 20.0f;  // readers reject larger node concentrations
 
 // The header size for a JSON text of `jsonBytes` bytes: 380 + JSON, padded with zero bytes

@@ -97,7 +97,8 @@ LoadedTable readBinaryLut(const std::filesystem::path& path) {
   for (int k = 0; k < 4; ++k) {
     const binary::AxisRecord& r = h.axes[k];
     axes[k] = Axis{r.name, r.unit, r.min, r.max, static_cast<int>(h.dims[k]),
-                   (r.flags & binary::kAxisPeriodic) != 0, static_cast<double>(r.warp)};
+                   (r.flags & binary::kAxisPeriodic) != 0, static_cast<double>(r.warp),
+                   (r.flags & binary::kAxisFolded) != 0, (r.flags & binary::kAxisLinearInExp2) != 0};
   }
   std::vector<Channel> channels;
   for (const std::string& c : h.channelNames) channels.push_back({c, ""});

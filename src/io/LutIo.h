@@ -20,8 +20,10 @@ namespace cloudlut::io {
 
 // Version of the LUT formats (binary header, EXR "cloudlutVersion", manifest "version").
 // 2 adds each axis's node concentration ("warp") and the scattering tables' log2 mean-source
-// encoding; version 1 files are still read (their axes are uniform).
-inline constexpr int kFormatVersion = 2;
+// encoding; 3 adds the axis flags "folded" (mirror symmetry about the axis's max) and
+// "linear in 2^value" (interpolation of a log2 axis). Versions 1 and 2 are still read (their
+// axes are neither).
+inline constexpr int kFormatVersion = 3;
 inline constexpr int kOldestFormatVersion = 1;
 
 // How the samples are stored: 8-bit unsigned normalised ([0, 1] → 0…255, round to nearest),

@@ -44,7 +44,8 @@ nlohmann::json describeTableWith(const Table4D& table, SampleType type, std::uin
   json axes = json::array();
   for (const Axis& a : table.axes())
     axes.push_back({{"name", a.name}, {"unit", a.unit}, {"min", a.min}, {"max", a.max},
-                    {"size", a.size}, {"periodic", a.periodic}, {"warp", a.warp}});
+                    {"size", a.size}, {"periodic", a.periodic}, {"warp", a.warp},
+                    {"folded", a.folded}, {"linear_in_exp2", a.linearInExp2}});
   json channels = json::array();
   for (const Channel& c : table.channels())
     channels.push_back({{"name", c.name}, {"meaning", c.meaning}});
@@ -153,6 +154,11 @@ Table4D tableFromDescription(const nlohmann::json& description, const std::files
       if (!(axes[k].warp >= 0.0 && axes[k].warp <= 20.0))
         throw FileError(path.string(), "axis " + std::to_string(k) + " has a bad node concentration");
     }
+    // "folded" and "linear_in_exp2" (version 3, FORMAT.md section 1) are absent from older files.
+    if (a.contains("folded")) axes[k].folded = required<bool>(a, "folded", path);
+    if (a.contains("linear_in_exp2")) axes[k].linearInExp2 = required<bool>(a, "linear_in_exp2", path);
+    if (axes[k].folded && axes[k].periodic)
+      throw FileError(path.string(), "axis " + std::to_string(k) + " is both periodic and folded");
     const auto size = required<std::int64_t>(a, "size", path);
     if (size < 1 || size > 0x7fffffff)
       throw FileError(path.string(), "axis " + std::to_string(k) + " has " + std::to_string(size) +

@@ -96,9 +96,7 @@ ShadingTables::Texture ShadingTables::upload(const GlContext& context, const Tab
                                    channels, table.data().data());
   t.dims = glm::vec4(d[0], d[1], d[2], d[3]);
   if (scattering) {
-    const Axis& a = table.axes()[3];
-    t.scatteringAxes = glm::vec3(static_cast<float>(a.min), static_cast<float>(a.max),
-                                 static_cast<float>(table.axes()[0].warp));
+    t.scatteringAxes = scatteringAxesRecord(table);  // density range, θS warp, layout flags
     if (!std::isfinite(t.scatteringAxes.x) || !std::isfinite(t.scatteringAxes.y)) {
       gl_.DeleteTextures(1, &t.texture);
       throw FileError(luts_, table.name() + ": density axis range is not finite");

@@ -42,7 +42,7 @@ class ShadingTables {
   struct Texture {
     GLuint texture = 0;
     glm::vec4 dims{0.0f};
-    glm::vec3 scatteringAxes{0.0f};  // scattering table: log2 ρ at the ends of axis 3, θS warp
+    glm::vec4 scatteringAxes{0.0f};  // scattering table: scatteringAxesRecord (core/TableLookup.h)
   };
   Texture upload(const GlContext& context, const Table4D& table, bool scattering);
   void bindTable(const ProgramUniforms& uniforms, int unit, const char* sampler, const char* dimsName,

@@ -22,8 +22,8 @@ uniform sampler3D uMultiple;
 uniform vec4 uOpticalDepthDims;  // (N0, N1, N2, N3)
 uniform vec4 uSingleDims;
 uniform vec4 uMultipleDims;
-uniform vec3 uSingleAxes;    // log2 rho at the first and last node of axis 3, theta_s warp
-uniform vec3 uMultipleAxes;
+uniform vec4 uSingleAxes;    // log2 rho at the first and last node of axis 3, theta_s warp, layout flags
+uniform vec4 uMultipleAxes;
 uniform float uUnitOpticalRadius;    // sigma = extinction * radius of the optical-depth table
 uniform int uFirstPhaseKind;         // phaseFunction() kind and parameter of the single table
 uniform float uFirstPhaseParam;
@@ -38,7 +38,7 @@ uniform float uLaterAsymmetry; // mean cosine of the later phase function (diffu
 // density the source is taken proportional to ρ (it vanishes with the medium).
 float multipleSourceAt(vec3 S, vec3 v, vec3 l, float rho) {
   float rhoMin = exp2(uMultipleAxes.x);
-  vec4 x = scatteringAxes(S, v, l, max(rho, rhoMin), uMultipleAxes.x, uMultipleAxes.y, uMultipleAxes.z);
+  vec4 x = scatteringAxes(S, v, l, max(rho, rhoMin), uMultipleAxes, float(uMultipleDims.w));
   return cloudlutSample4D(uMultiple, x, uMultipleDims).x * min(rho / rhoMin, 1.0);
 }
 
@@ -100,7 +100,7 @@ void main() {
   // own opacity 1 − e^{−τ} (both models).
   float single = 0.0;
   if ((uTerms & 1) != 0) {
-    vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleAxes.x, uSingleAxes.y, uSingleAxes.z);
+    vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleAxes, float(uSingleDims.w));
     single = phaseFunction(uFirstPhaseKind, dot(dir, uSunDirection), uFirstPhaseParam) *
              singleScatteringFromTable(cloudlutSample4D(uSingle, x, uSingleDims).x, tau);
   }
@@ -113,7 +113,7 @@ void main() {
   float multiple = 0.0;
   if ((uTerms & 2) != 0) {
     if (uLighting == 0) {
-      vec4 x = scatteringAxes(S, v, l, rho, uMultipleAxes.x, uMultipleAxes.y, uMultipleAxes.z);
+      vec4 x = scatteringAxes(S, v, l, rho, uMultipleAxes, float(uMultipleDims.w));
       multiple = sunlight * multipleScatteringFromTable(cloudlutSample4D(uMultiple, x, uMultipleDims).x, tau);
     } else {
       float lit = max(sunlight, diffuseTransmittance(tauOutside, uLaterAsymmetry));
