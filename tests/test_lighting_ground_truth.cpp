@@ -35,25 +35,7 @@ struct Judged {
 };
 
 Judged judge(const render::Image& img, const io::ExrImage& ref) {
-  const std::size_t n = ref.pixelCount();
-  std::vector<float> r(n), g(n), b(n), a(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    r[i] = img.rgba[4 * i];
-    g[i] = img.rgba[4 * i + 1];
-    b[i] = img.rgba[4 * i + 2];
-    a[i] = img.rgba[4 * i + 3];
-  }
-  const reference::RgbaView va{img.width, img.height, r.data(), g.data(), b.data(), a.data()};
-  const reference::RgbaView vb{ref.width,
-                               ref.height,
-                               ref.channel("R").data(),
-                               ref.channel("G").data(),
-                               ref.channel("B").data(),
-                               ref.channel("A").data(),
-                               ref.channel("stderr.R").data(),
-                               ref.channel("stderr.G").data(),
-                               ref.channel("stderr.B").data()};
-  const reference::ImageErrors e = reference::compareImages(va, vb);
+  const reference::ImageErrors e = reference::compareToReference(img.width, img.height, img.rgba.data(), ref);
   return {e.noiseCorrectedRelativeRmse, e.relativeBias, e.referenceNoise};
 }
 

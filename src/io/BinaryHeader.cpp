@@ -123,13 +123,14 @@ Header parseHeader(std::string_view bytes, const std::filesystem::path& path) {
     if (!std::isfinite(r.min) || !std::isfinite(r.max) || !(r.min <= r.max))
       fail("corrupt header (axis " + std::to_string(k) + " range [" + std::to_string(r.min) + ", " +
            std::to_string(r.max) + "] is not a finite interval)");
-    if ((r.flags & ~kAxisPeriodic) != 0)
-      fail("corrupt header (axis " + std::to_string(k) + " has reserved flag bits set: " + std::to_string(r.flags) +
-           "; lut_formats/FORMAT.md says they are 0)");
     if (!(r.warp >= 0.0f && r.warp <= kMaxAxisWarp) || (h.version < 2 && r.warp != 0.0f))
       fail("corrupt header (axis " + std::to_string(k) + " node concentration)");
-    if ((r.flags & ~axisFlagsOf(h.version)) != 0 || ((r.flags & kAxisPeriodic) && (r.flags & kAxisFolded)))
-      fail("corrupt header (axis " + std::to_string(k) + " flags " + std::to_string(r.flags) + ")");
+    if ((r.flags & ~axisFlagsOf(h.version)) != 0)
+      fail("corrupt header (axis " + std::to_string(k) + " has flag bits reserved in version " +
+           std::to_string(h.version) + " set: " + std::to_string(r.flags) + "; see lut_formats/FORMAT.md)");
+    if ((r.flags & kAxisPeriodic) && (r.flags & kAxisFolded))
+      fail("corrupt header (axis " + std::to_string(k) + " is both periodic and folded: flags " +
+           std::to_string(r.flags) + ")");
     if (h.dims[k] < 1) fail("corrupt header (axis " + std::to_string(k) + " has no nodes)");
   }
   for (std::size_t c = 0; c < h.channelCount; ++c) {

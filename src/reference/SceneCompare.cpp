@@ -103,4 +103,18 @@ ImageErrors compareImages(const RgbaView& a, const RgbaView& b, double alphaThre
   return e;
 }
 
+ImageErrors compareToReference(int width, int height, const float* rgba, const io::ExrImage& reference,
+                               double alphaThreshold) {
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  std::vector<float> planes(4 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t c = 0; c < 4; ++c) planes[c * n + i] = rgba[4 * i + c];
+  const RgbaView a{width, height, planes.data(), planes.data() + n, planes.data() + 2 * n, planes.data() + 3 * n};
+  const auto channel = [&](const char* name) { return reference.has(name) ? reference.channel(name).data() : nullptr; };
+  const RgbaView b{reference.width,   reference.height,     channel("R"),       channel("G"),      channel("B"),
+                   channel("A"),      channel("stderr.R"),  channel("stderr.G"), channel("stderr.B")};
+  if (!b.r || !b.g || !b.b) throw std::invalid_argument("the reference has no R, G, B channels");
+  return compareImages(a, b, alphaThreshold);
+}
+
 }  // namespace cloudlut::reference

@@ -27,6 +27,8 @@
 #include <string>
 #include <vector>
 
+#include "io/ExrImage.h"
+
 namespace cloudlut::reference {
 
 struct RgbaView {
@@ -55,6 +57,12 @@ inline constexpr double kDefaultAlphaThreshold = 0.01;
 
 // Throws std::invalid_argument when the sizes differ.
 ImageErrors compareImages(const RgbaView& a, const RgbaView& b, double alphaThreshold = kDefaultAlphaThreshold);
+
+// compareImages of an interleaved RGBA image (4 floats per pixel, e.g. a render read back)
+// against a reference EXR's R, G, B, A and, when it has them, stderr.R/G/B channels.
+// Throws std::invalid_argument when the sizes differ.
+ImageErrors compareToReference(int width, int height, const float* rgba, const io::ExrImage& reference,
+                               double alphaThreshold = kDefaultAlphaThreshold);
 
 // SSIM map of two luminance images (same size), window and constants as above, with the
 // dynamic range `range`.

@@ -17,18 +17,20 @@ float linearToSrgb(float linear) {
   return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
+std::uint8_t displayValue(float radiance, float alpha, float background, float exposure) {
+  float v = radiance + (1.0f - alpha) * background;
+  if (!std::isfinite(v)) v = 0.0f;
+  const float mapped = 1.0f - std::exp(-exposure * std::max(v, 0.0f));
+  return static_cast<std::uint8_t>(std::lround(255.0f * linearToSrgb(mapped)));
+}
+
 void writePng(const Image& image, const std::filesystem::path& path, const glm::vec3& background,
               float exposure) {
   const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   std::vector<std::uint8_t> rgb(pixels * 3);
   for (std::size_t i = 0; i < pixels; ++i) {
     const float* p = &image.rgba[4 * i];
-    for (int c = 0; c < 3; ++c) {
-      float v = p[c] + (1.0f - p[3]) * background[c];
-      if (!std::isfinite(v)) v = 0.0f;
-      const float mapped = 1.0f - std::exp(-exposure * std::max(v, 0.0f));
-      rgb[3 * i + c] = static_cast<std::uint8_t>(std::lround(255.0f * linearToSrgb(mapped)));
-    }
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = displayValue(p[c], p[3], background[c], exposure);
   }
   io::writePng(path, image.width, image.height, rgb);
 }

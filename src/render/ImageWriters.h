@@ -2,6 +2,7 @@
 // Writing rendered images. Both writers write a temporary file beside the destination and
 // rename it over the final name (a final name holds either nothing or a complete image); a
 // directory that does not exist or cannot be written raises UsageError.
+#include <cstdint>
 #include <filesystem>
 
 #include <glm/vec3.hpp>
@@ -23,5 +24,10 @@ void writeExr(const Image& image, const std::filesystem::path& path);
 
 // sRGB encoding of a linear value in [0, 1].
 float linearToSrgb(float linear);
+
+// The 8-bit display value of one channel: radiance composited over the background,
+// c = radiance + (1 − alpha)·background, tone-mapped by 1 − e^{−exposure·c}, sRGB-encoded
+// (non-finite values show as 0). writePng and the viewer use it.
+std::uint8_t displayValue(float radiance, float alpha, float background, float exposure);
 
 }  // namespace cloudlut::render

@@ -1,8 +1,5 @@
 #include "view/DisplayToneMap.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include "render/ImageWriters.h"
 
 namespace cloudlut::view {
@@ -13,13 +10,8 @@ void toneMapForDisplay(const render::Image& image, const glm::vec3& background, 
   rgba8.resize(4 * pixels);
   for (std::size_t i = 0; i < pixels; ++i) {
     const float* p = &image.rgba[4 * i];
-    for (int c = 0; c < 3; ++c) {
-      float v = p[c] + (1.0f - p[3]) * background[c];
-      if (!std::isfinite(v)) v = 0.0f;
-      const float mapped = 1.0f - std::exp(-exposure * std::max(v, 0.0f));
-      rgba8[4 * i + static_cast<std::size_t>(c)] =
-          static_cast<std::uint8_t>(std::lround(255.0f * render::linearToSrgb(mapped)));
-    }
+    for (int c = 0; c < 3; ++c)
+      rgba8[4 * i + static_cast<std::size_t>(c)] = render::displayValue(p[c], p[3], background[c], exposure);
     rgba8[4 * i + 3] = 255;
   }
 }
