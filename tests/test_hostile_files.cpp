@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
-#include <functional>
 #include <string>
 #include <thread>
 
@@ -19,6 +18,7 @@
 #include "io/ExrImage.h"
 #include "scene/Scene.h"
 #include "io/LutIo.h"
+#include "support/Checks.h"
 #include "support/CliRunner.h"
 #include "support/SmallTables.h"
 
@@ -39,15 +39,6 @@ void claimDataWindow(const fs::path& file, int width, int height) {
   writeFile(file, bytes);
 }
 
-std::string fileErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const FileError& e) {
-    return e.what();
-  }
-  FAIL("expected a FileError");
-  return {};
-}
 
 // Forks and execs the re-bake. SIGTERM and SIGINT stay blocked across the fork until the child
 // has dropped the test framework's handlers, so a signal that arrives before exec kills it by the

@@ -18,6 +18,7 @@
 #include "io/LutSetMedium.h"
 #include "io/TableDescription.h"
 #include "scene/Scene.h"
+#include "support/Checks.h"
 #include "support/CliRunner.h"
 #include "support/SmallTables.h"
 
@@ -34,17 +35,6 @@ void bakeSmall(const fs::path& out, int seed = 1, const std::string& dims = "16,
   REQUIRE(r.exitCode == 0);
 }
 
-// The message of the FileError `f` throws; fails the test when it throws nothing else.
-template <typename F>
-std::string fileErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const FileError& e) {
-    return e.what();
-  }
-  FAIL("expected a FileError");
-  return {};
-}
 
 // The manifest of `dir` with its optical-depth parameters changed by `edit`.
 template <typename Edit>

@@ -15,6 +15,7 @@
 #include "core/Defaults.h"
 #include "core/Errors.h"
 #include "core/Glsl.h"
+#include "core/SphereRays.h"
 #include "core/TableLookup.h"
 #include "scene/Cloudscape.h"
 #include "scene/Scene.h"
@@ -117,10 +118,8 @@ ScatteringChoice chooseScatteringResolution(const ScatteringSettings& settings, 
     r.S = unit();
     r.l = unit();
     // v cosine-weighted about the inward normal: rays as a distant camera sees them
-    const glm::dvec3 n = -r.S, a = std::abs(n.x) < 0.7 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-    const glm::dvec3 t = glm::normalize(glm::cross(n, a)), b = glm::cross(n, t);
-    const double q = std::sqrt(u(rng)), p = 6.283185307179586 * u(rng);
-    r.v = glm::normalize(std::sqrt(1.0 - q * q) * n + q * (std::cos(p) * t + std::sin(p) * b));
+    const double u1 = u(rng), u2 = u(rng);
+    r.v = cosineWeightedInward(r.S, u1, u2);
     const double s = settings.sMin + (settings.sMax - settings.sMin) * u(rng);
     r.rhoBetween = std::exp2(s);
     r.rhoSlice = std::exp2(std::round(s));

@@ -25,6 +25,7 @@
 #include "core/Defaults.h"
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
+#include "core/SphereRays.h"
 #include "reference/SphereMonteCarlo.h"
 
 namespace cloudlut::bench {
@@ -51,10 +52,8 @@ std::vector<Ray> makeRays(int perGroup) {
       Ray r;
       r.S = unit();
       r.l = unit();
-      const glm::dvec3 n = -r.S, a = std::abs(n.x) < 0.7 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-      const glm::dvec3 t = glm::normalize(glm::cross(n, a)), b = glm::cross(n, t);
-      const double q = std::sqrt(u(rng)), p = 6.283185307179586 * u(rng);
-      r.v = glm::normalize(std::sqrt(1.0 - q * q) * n + q * (std::cos(p) * t + std::sin(p) * b));
+      const double u1 = u(rng), u2 = u(rng);
+      r.v = cosineWeightedInward(r.S, u1, u2);
       r.between = g > octaves;
       r.rho = std::exp2(r.between ? defaults::kDensitySlopeMin + octaves * u(rng) : defaults::kDensitySlopeMin + g);
       rays.push_back(r);
