@@ -3,8 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include "bake/EnergyBalance.h"
 #include "bake/MultipleScattering.h"
@@ -136,12 +141,26 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
       report["resolution"] = {{"radial", res.radial}, {"zenith", res.zenith}, {"dir_theta", res.dirTheta},
                               {"dir_phi", res.dirPhi}, {"fine_theta", res.fineTheta}, {"fine_phi", res.finePhi},
                               {"transport_points", res.transportPoints}, {"gather_points", res.gatherPoints}};
-      for (int k = 0; k < nRho; ++k) {
-        nlohmann::json r;
-        fast.bakeSlice(sigmaOf(k), k, t, tail ? &*tail : nullptr, r, progress,
-                       singleSpan + (1.0 - singleSpan) * k / nRho, (1.0 - singleSpan) / nRho);
-        slices.push_back(r);
-      }
+      // The density slices are independent (each writes its own slice of the tables), so they
+      // run side by side as well as inside: the serial parts of one slice (the coarse
+      // correction's factorisation, GMRES's small steps) overlap another slice's work.
+      std::vector<nlohmann::json> sliceReports(static_cast<std::size_t>(nRho));
+      std::mutex progressMutex;
+      int slicesDone = 0;
+      tbb::parallel_for(
+          tbb::blocked_range<int>(0, nRho, 1),
+          [&](const tbb::blocked_range<int>& range) {
+            for (int k = range.begin(); k != range.end(); ++k) {
+              fast.bakeSlice(sigmaOf(k), k, t, tail ? &*tail : nullptr, sliceReports[static_cast<std::size_t>(k)],
+                             ProgressFn{}, 0.0, 1.0);
+              const std::lock_guard<std::mutex> lock(progressMutex);
+              ++slicesDone;
+              reportProgress(progress, "multiple scattering",
+                             singleSpan + (1.0 - singleSpan) * slicesDone / nRho);
+            }
+          },
+          tbb::simple_partitioner());
+      for (auto& r : sliceReports) slices.push_back(std::move(r));
       if (tail) {
         // Energy closure of the tail (orders 19 … ∞): a non-absorbing particle returns all the
         // light it receives, so the tail's share is 1 − unscattered − single − orders 2…18,

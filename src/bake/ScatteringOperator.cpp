@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Core>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include "bake/Quadrature.h"
 
@@ -15,20 +18,22 @@ constexpr double kPi = 3.14159265358979323846;
 
 void convolvePhase(const std::vector<float>& in, int inCols, const std::vector<float>& Mt, int cols, int nodes,
                    std::vector<float>& out) {
-  // Rows in blocks of 4, so that each row of Mt is read once per block.
-  tbb::parallel_for(0, (nodes + 3) / 4, [&](int blk) {
-    const int s0 = blk * 4, s1 = std::min(nodes, s0 + 4);
-    for (int s = s0; s < s1; ++s) std::fill_n(&out[static_cast<std::size_t>(s) * cols], cols, 0.0f);
-    for (int j = 0; j < inCols; ++j) {
-      const float* m = &Mt[static_cast<std::size_t>(j) * cols];
-      for (int s = s0; s < s1; ++s) {
-        const float a = in[static_cast<std::size_t>(s) * inCols + j];
-        if (a == 0.0f) continue;
-        float* o = &out[static_cast<std::size_t>(s) * cols];
-        for (int i = 0; i < cols; ++i) o[i] += a * m[i];
-      }
-    }
-  });
+  // One matrix product out = in · Mt (row-major), by Eigen's blocked kernel over fixed blocks of
+  // rows: the blocks do not depend on the thread count, so neither does any sum's order.
+  using RowMajor = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const Eigen::Map<const RowMajor> m(Mt.data(), inCols, cols);
+  constexpr int kRows = 32;
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, (nodes + kRows - 1) / kRows, 1),
+      [&](const tbb::blocked_range<int>& r) {
+        for (int blk = r.begin(); blk != r.end(); ++blk) {
+          const int s0 = blk * kRows, n = std::min(nodes, s0 + kRows) - s0;
+          const Eigen::Map<const RowMajor> a(&in[static_cast<std::size_t>(s0) * inCols], n, inCols);
+          Eigen::Map<RowMajor> o(&out[static_cast<std::size_t>(s0) * cols], n, cols);
+          o.noalias() = a * m;
+        }
+      },
+      tbb::simple_partitioner());
 }
 
 TransportStencil::TransportStencil(const SphereField& field, double sigma, int points) : field_(&field) {
