@@ -33,9 +33,11 @@
 
 #include "bake/ScatteringBaker.h"
 #include "bench/BenchSuites.h"
+#include "bench/DarkSideCheck.h"
 #include "core/Defaults.h"
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
+#include "reference/PhotonExitTally.h"
 #include "reference/SphereMonteCarlo.h"
 
 namespace cloudlut::bench {
@@ -147,6 +149,31 @@ constexpr std::array<int, 4> kSpeedPairDims{16, 64, 16, 2};
 constexpr int kSpeedPairOrders = 2;
 constexpr int kSpeedPairFastRuns = 3;
 
+// One row per density: the converged tables' dark side (θS ≥ 100°) against forward photon
+// tracing. ρ = 1/4 and 1 in 24 bins (θS halves, θv quarters, φv thirds); ρ = 8 in 6 wide bins
+// (θv thirds, φv halves), since few photons cross so dense a particle. error_* are over the
+// bins' |table/photons − 1|; seconds = the tally's time; steps = photons.
+void darkSideRows(BenchReport& report, const bake::ScatteringResult& r, const std::string& resolution, bool quick) {
+  for (const double rho : {0.25, 1.0, 8.0}) {
+    const auto bins = rho > 4 ? reference::darkSideBins(1, 3, 2) : reference::darkSideBins(2, 4, 3);
+    const long long photons = quick ? 20000 : (rho < 0.5 ? 2000000 : 4000000);
+    const DarkSideComparison c = compareDarkSide(*r.single, *r.multiple, rho, bins, photons, 23);
+    std::vector<double> errors;
+    for (const auto& b : c.bins) errors.push_back(std::abs(b.relativeError()));
+    const ErrorStats es = summarizeErrors(errors);
+    char note[256];
+    std::snprintf(note, sizeof note,
+                  "dark side vs forward photons: median |rel. error| %.4f; worst %+.4f (tally rel. se %.4f); %zu bins",
+                  c.medianAbsError, c.worstError, c.worstSe, bins.size());
+    char variant[32];
+    std::snprintf(variant, sizeof variant, "dark side rho %g", rho);
+    report.add({"scattering", "fast", "single+multiple", variant, resolution, "converged",
+                static_cast<int>(photons), 0, c.tallySeconds, es.mean, es.p95, es.max, -1, note});
+    std::printf("scattering dark side rho %g: %s\n", rho, note);
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 
 void benchScattering(BenchReport& report, const BenchOptions& options, const fs::path& out) {
@@ -227,6 +254,9 @@ void benchScattering(BenchReport& report, const BenchOptions& options, const fs:
     report.add({"scattering", c.method, "multiple_scattering", "cs", resolutionOf(c.dims), orders, 0, c.threads, seconds,
                 em.mean, em.p95, em.max, minTotalEnergy(r.report),
                 "median rel. error " + std::to_string(median) + " vs MC orders " + (c.orders > 0 ? "2-18" : "2-inf")});
+    // The converged default tables' dark side against forward photon tracing (DarkSideCheck.h).
+    if (c.orders == 0 && c.threads == cores && c.dims == (options.quick ? half : full))
+      darkSideRows(report, r, resolutionOf(c.dims), options.quick);
   }
   reportProgress(options.progress, "bench: scattering", 1.0);
 }

@@ -219,10 +219,42 @@ std::vector<SphereMcEstimate> estimateSphereRadiance(const std::vector<SphereMcQ
   return out;
 }
 
+ForwardPhoton traceForwardPhoton(double sigma, const Phase& first, const Phase& later, McRng& rng) {
+  const glm::dvec3 l(0, 0, 1);
+  // Uniform point on the unit disk facing the sun, entering along -l.
+  const double rr = std::sqrt(rng.next()), ph = 2.0 * kPi * rng.next();
+  const double px = rr * std::cos(ph), py = rr * std::sin(ph);
+  const double h = std::sqrt(std::max(0.0, 1.0 - rr * rr));
+  glm::dvec3 x(px, py, h), d = -l;
+  const double chord = 2.0 * h;
+  const double pInt = -std::expm1(-sigma * chord);
+  ForwardPhoton out;
+  out.unscatteredWeight = 1.0 - pInt;
+  out.weight = pInt;  // forced first collision
+  x += (std::min(-std::log1p(-rng.next() * pInt) / sigma, chord)) * d;
+  d = rotateAbout(d, samplePhaseCosine(first, rng), rng.next());
+  int k = 1;
+  for (;;) {
+    const double dist = distanceToBoundary(x, d);
+    const double t = -std::log(1.0 - rng.next()) / sigma;
+    if (t >= dist) {
+      x += dist * d;
+      break;
+    }
+    x += t * d;
+    ++k;
+    d = rotateAbout(d, samplePhaseCosine(later, rng), rng.next());
+    if (k > 50000000) break;
+  }
+  out.order = k;
+  out.exitPoint = glm::normalize(x);
+  out.exitDirection = d;
+  return out;
+}
+
 PhotonShares photonTraceSphere(double sigma, const Phase& first, const Phase& later,
                                long long photons, std::uint64_t seed, int maxOrder) {
   if (photons < 1 || maxOrder < 1) throw std::invalid_argument("photonTraceSphere: bad counts");
-  const glm::dvec3 l(0, 0, 1);
   const long long blocks = (photons + kPathsPerBlock - 1) / kPathsPerBlock;
   struct Block {
     std::vector<double> byOrder;
@@ -235,29 +267,10 @@ PhotonShares photonTraceSphere(double sigma, const Phase& first, const Phase& la
     McRng rng(seed, 0xf0f0f0f0ULL, static_cast<std::uint64_t>(b));
     const long long count = std::min(kPathsPerBlock, photons - b * kPathsPerBlock);
     for (long long i = 0; i < count; ++i) {
-      // Uniform point on the unit disk facing the sun, entering along -l.
-      const double rr = std::sqrt(rng.next()), ph = 2.0 * kPi * rng.next();
-      const double px = rr * std::cos(ph), py = rr * std::sin(ph);
-      const double h = std::sqrt(std::max(0.0, 1.0 - rr * rr));
-      glm::dvec3 x(px, py, h), d = -l;
-      const double chord = 2.0 * h;
-      const double pInt = -std::expm1(-sigma * chord);
-      blk.unscattered += 1.0 - pInt;
-      const double w = pInt;  // forced first collision
-      x += (std::min(-std::log1p(-rng.next() * pInt) / sigma, chord)) * d;
-      d = rotateAbout(d, samplePhaseCosine(first, rng), rng.next());
-      int k = 1;
-      for (;;) {
-        const double dist = distanceToBoundary(x, d);
-        const double t = -std::log(1.0 - rng.next()) / sigma;
-        if (t >= dist) break;
-        x += t * d;
-        ++k;
-        d = rotateAbout(d, samplePhaseCosine(later, rng), rng.next());
-        if (k > 50000000) break;
-      }
-      if (k <= maxOrder) blk.byOrder[static_cast<std::size_t>(k)] += w;
-      else blk.beyond += w;
+      const ForwardPhoton p = traceForwardPhoton(sigma, first, later, rng);
+      blk.unscattered += p.unscatteredWeight;
+      if (p.order <= maxOrder) blk.byOrder[static_cast<std::size_t>(p.order)] += p.weight;
+      else blk.beyond += p.weight;
     }
     partial[static_cast<std::size_t>(b)] = std::move(blk);
   });

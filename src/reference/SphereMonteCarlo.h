@@ -80,6 +80,18 @@ class McRng {
 // from Henyey–Greenstein lobes); exposed for tests.
 double samplePhaseCosine(const Phase& phase, McRng& rng);
 
+// One forward (analog) photon: it enters uniformly over the sun-facing disk along −l, its
+// first collision is forced (weight = 1 − e^{−σ·chord}, the rest crosses unscattered), and it
+// scatters (first phase, then later phase) until it leaves the sphere.
+struct ForwardPhoton {
+  double weight = 0;             // the scattered share it carries
+  double unscatteredWeight = 0;  // the share that crossed without a collision (exact)
+  int order = 0;                 // scatterings before it left
+  glm::dvec3 exitPoint{0.0};     // on the unit sphere
+  glm::dvec3 exitDirection{0.0}; // unit
+};
+ForwardPhoton traceForwardPhoton(double sigma, const Phase& first, const Phase& later, McRng& rng);
+
 // Shares of the incident power (π for unit irradiance) leaving the sphere, by order, from
 // forward (analog) photon tracing: photons enter uniformly over the cross-section.
 struct PhotonShares {
