@@ -78,8 +78,9 @@ std::string hex(std::uint64_t v) {
   return buf;
 }
 
-// The LUT set the particle renderer uses: optical depth of the medium's model and scattering
-// tables baked at reduced resolution (converged multiple scattering); cached in `dir`.
+// The LUT set the particle renderer uses: optical depth of the medium's model and the default
+// scattering tables (converged or 18-order multiple scattering), as a user's bake gives them;
+// reduced resolution with --quick; cached in `dir`.
 bool ensureLutSet(const fs::path& dir, const Medium& medium, bool quick, int orders, std::string& note) {
   if (fs::exists(dir / "manifest.json")) return true;
   try {
@@ -88,7 +89,7 @@ bool ensureLutSet(const fs::path& dir, const Medium& medium, bool quick, int ord
     od.dims = quick ? std::array<int, 4>{32, 16, 32, 16} : defaults::kOpticalDepthDims;
     const Table4D depth = bake::bakeOpticalDepth(ReferenceParticle(medium.model, medium.seed), od);
     bake::ScatteringSettings sc;
-    sc.dims = {16, 32, 8, 8};  // reduced resolution: the default bake is slow on shared machines
+    if (quick) sc.dims = {16, 32, 8, 8};
     sc.orders = orders;  // 0: converged
     const bake::ScatteringResult r = bake::bakeScattering(sc);
     if (!r.single || !r.multiple) throw std::runtime_error("the scattering baker returned no tables");
@@ -158,7 +159,7 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
   std::vector<LutRenderer> lutRenderers;
   for (const int orders : {0, 18}) {
     const std::string tag = orders == 0 ? "" : "-" + std::to_string(orders);
-    const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + tag + (options.quick ? "-quick" : ""));
+    const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + tag + (options.quick ? "-quick" : "-default"));
     reportProgress(options.progress, "ground-truth: LUT set" + tag, 0.0);
     if (!ensureLutSet(lutDir, medium, options.quick, orders, lutNote)) continue;
     try {
