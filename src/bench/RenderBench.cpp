@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,61 @@ ErrorStats frameChange(const render::Image& a, const render::Image& b, const glm
   return summarizeErrors(std::move(d));
 }
 
+// N unit spheres (ρ = 1) at uniform random points of a slab 8 units thick whose area grows with N
+// (1.5² units² per particle: a cloud layer that widens, not one that packs tighter), fixed seed.
+std::vector<scene::Particle> slabParticles(std::size_t n) {
+  std::mt19937 rng(12345u);
+  const float side = 1.5f * std::sqrt(static_cast<float>(n));
+  std::uniform_real_distribution<float> across(-0.5f * side, 0.5f * side), up(0.0f, 8.0f);
+  std::vector<scene::Particle> out(n);
+  for (scene::Particle& p : out) {
+    const float x = across(rng), z = across(rng), y = up(rng);
+    p.center = {x, y, z};
+  }
+  return out;
+}
+
+// Time against particle count (1e4, 1e5, 1e6 explicit particles, 640×360, alpha blending): the
+// seed's per-particle occlusion (LightOcclusion) and the cloud lighting's sun volume, each time
+// as a ratio against the 1e5 case of the same run.
+void benchParticleCount(BenchReport& report, const BenchOptions& options, render::Renderer& renderer) {
+  const int width = 640, height = 360;
+  const std::string res = std::to_string(width) + "x" + std::to_string(height);
+  const std::vector<std::size_t> counts =
+      options.quick ? std::vector<std::size_t>{10000, 100000} : std::vector<std::size_t>{10000, 100000, 1000000};
+  for (const render::LightingModel lighting : {render::LightingModel::Seed, render::LightingModel::Cloud}) {
+    double at1e5 = 0;
+    std::vector<std::pair<std::size_t, render::RenderStats>> measured;
+    for (const std::size_t n : counts) {
+      const std::vector<scene::Particle> particles = slabParticles(n);
+      const float side = 1.5f * std::sqrt(static_cast<float>(n));
+      render::RenderSettings s;
+      s.width = width;
+      s.height = height;
+      s.lighting = lighting;
+      s.sunlight = render::defaultSunlight(lighting);
+      s.view.camera.target = {0.0f, 4.0f, 0.0f};
+      s.view.camera.eye = {0.0f, 0.45f * side + 10.0f, 0.75f * side + 10.0f};
+      s.view.camera.fovDeg = 60.0f;
+      s.view.lighting.sunDirection = glm::normalize(glm::vec3(0.5f, 0.8f, 0.3f));
+      render::RenderStats st;
+      renderer.render(particles, s, &st);
+      if (n == 100000) at1e5 = st.occlusionSeconds;
+      measured.emplace_back(n, st);
+    }
+    for (const auto& [n, st] : measured) {
+      char note[200];
+      std::snprintf(note, sizeof note, "%s; time / time at 1e5 %.2f; upload %.0f ms, shading %.0f ms, %zu tile nodes dropped",
+                    lighting == render::LightingModel::Seed ? "seed: per-particle occlusion (light-space tiles)"
+                                                            : "cloud: sun optical-depth volume",
+                    at1e5 > 0 ? st.occlusionSeconds / at1e5 : 0.0, 1e3 * st.uploadSeconds, 1e3 * st.renderSeconds,
+                    st.tileOverflow);
+      report.add(BenchRow{"render", "particle-count", "sunlight", render::toString(lighting), res, "",
+                          static_cast<int>(n), 0, st.occlusionSeconds, -1, -1, -1, -1, note});
+    }
+  }
+}
+
 }  // namespace
 
 void benchRender(BenchReport& report, const BenchOptions& options) {
@@ -141,7 +197,7 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
         };
         char ratio[96];
         std::snprintf(ratio, sizeof ratio, "seed lighting; cloud/seed total time %.2f", total / std::max(totalSeed, 1e-9));
-        seedRow("sunlight", ss.occlusionSeconds, "64x64 light tiles, xi 0.05, smoothing");
+        seedRow("sunlight", ss.occlusionSeconds, "light tiles: lightTilesFor(N) per side, xi 0.05, smoothing");
         seedRow("shading+blending", ss.renderSeconds, "seed lighting");
         seedRow("total", totalSeed, ratio);
       }
@@ -179,6 +235,7 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
                               " frames, 15 m + 0.05 deg yaw per frame"});
     }
   }
+  benchParticleCount(report, options, renderer);
   reportProgress(options.progress, "bench: render", 1.0);
 }
 

@@ -15,7 +15,7 @@ enum Term : unsigned { kTermSingle = 1, kTermMultiple = 2, kTermAmbient = 4, kAl
 inline constexpr float kMinOpacityForDistance = 1.0f / 256.0f;
 inline constexpr int kMaxImageSide = 16384;
 // Occlusion (seed §5.3): extinction scale of the light-space occlusion, and the tile grid
-// (kLightTiles × kLightTiles tiles; render/LightOcclusion.h).
+// (at least kLightTiles × kLightTiles tiles, more for many particles; render/LightOcclusion.h).
 inline constexpr float kOcclusionXi = 0.05f;
 inline constexpr int kLightTiles = 64;
 // Volume blending: segments composited exactly per pixel (render/VolumeResolve.h), and the
