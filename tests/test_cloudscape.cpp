@@ -396,9 +396,10 @@ TEST_CASE("cloudscape CLI: default scene, presets, frames, and bad input", "[clo
   r = runCli(base + "--scene '" + (tmp / "bad.json").string() + "'" + out);
   CHECK(r.exitCode == 1);
   CHECK(r.err.find("coverage") != std::string::npos);
-  // A fragment pool larger than the GPU buffers allow.
-  r = runCli("render --luts '" + (tmp / "luts").string() + "' --width 2048 --height 2048 --quality low "
-             "--fragments-per-pixel 1024" + out);
+  // A tile pool budget that holds not even one pixel's fragments (larger images are tiled:
+  // tests/test_volume_tiles.cpp).
+  r = runCli("render --luts '" + (tmp / "luts").string() + "' --width 64 --height 64 --quality low "
+             "--fragments-per-pixel 1024 --volume-pool-mib 0.01" + out);
   CHECK(r.exitCode == 2);
   CHECK(r.err.find("MiB") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(tmp / "bad.png"));

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,61 @@ ErrorStats frameChange(const render::Image& a, const render::Image& b, const glm
   return summarizeErrors(std::move(d));
 }
 
+// N unit spheres (ρ = 1) at uniform random points of a slab 8 units thick whose area grows with N
+// (1.5² units² per particle: a cloud layer that widens, not one that packs tighter), fixed seed.
+std::vector<scene::Particle> slabParticles(std::size_t n) {
+  std::mt19937 rng(12345u);
+  const float side = 1.5f * std::sqrt(static_cast<float>(n));
+  std::uniform_real_distribution<float> across(-0.5f * side, 0.5f * side), up(0.0f, 8.0f);
+  std::vector<scene::Particle> out(n);
+  for (scene::Particle& p : out) {
+    const float x = across(rng), z = across(rng), y = up(rng);
+    p.center = {x, y, z};
+  }
+  return out;
+}
+
+// Time against particle count (1e4, 1e5, 1e6 explicit particles, 640×360, alpha blending): the
+// seed's per-particle occlusion (LightOcclusion) and the cloud lighting's sun volume, each time
+// as a ratio against the 1e5 case of the same run.
+void benchParticleCount(BenchReport& report, const BenchOptions& options, render::Renderer& renderer) {
+  const int width = 640, height = 360;
+  const std::string res = std::to_string(width) + "x" + std::to_string(height);
+  const std::vector<std::size_t> counts =
+      options.quick ? std::vector<std::size_t>{10000, 100000} : std::vector<std::size_t>{10000, 100000, 1000000};
+  for (const render::LightingModel lighting : {render::LightingModel::Seed, render::LightingModel::Cloud}) {
+    double at1e5 = 0;
+    std::vector<std::pair<std::size_t, render::RenderStats>> measured;
+    for (const std::size_t n : counts) {
+      const std::vector<scene::Particle> particles = slabParticles(n);
+      const float side = 1.5f * std::sqrt(static_cast<float>(n));
+      render::RenderSettings s;
+      s.width = width;
+      s.height = height;
+      s.lighting = lighting;
+      s.sunlight = render::defaultSunlight(lighting);
+      s.view.camera.target = {0.0f, 4.0f, 0.0f};
+      s.view.camera.eye = {0.0f, 0.45f * side + 10.0f, 0.75f * side + 10.0f};
+      s.view.camera.fovDeg = 60.0f;
+      s.view.lighting.sunDirection = glm::normalize(glm::vec3(0.5f, 0.8f, 0.3f));
+      render::RenderStats st;
+      renderer.render(particles, s, &st);
+      if (n == 100000) at1e5 = st.occlusionSeconds;
+      measured.emplace_back(n, st);
+    }
+    for (const auto& [n, st] : measured) {
+      char note[200];
+      std::snprintf(note, sizeof note, "%s; time / time at 1e5 %.2f; upload %.0f ms, shading %.0f ms, %zu tile nodes dropped",
+                    lighting == render::LightingModel::Seed ? "seed: per-particle occlusion (light-space tiles)"
+                                                            : "cloud: sun optical-depth volume",
+                    at1e5 > 0 ? st.occlusionSeconds / at1e5 : 0.0, 1e3 * st.uploadSeconds, 1e3 * st.renderSeconds,
+                    st.tileOverflow);
+      report.add(BenchRow{"render", "particle-count", "sunlight", render::toString(lighting), res, "",
+                          static_cast<int>(n), 0, st.occlusionSeconds, -1, -1, -1, -1, note});
+    }
+  }
+}
+
 }  // namespace
 
 void benchRender(BenchReport& report, const BenchOptions& options) {
@@ -141,7 +197,7 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
         };
         char ratio[96];
         std::snprintf(ratio, sizeof ratio, "seed lighting; cloud/seed total time %.2f", total / std::max(totalSeed, 1e-9));
-        seedRow("sunlight", ss.occlusionSeconds, "64x64 light tiles, xi 0.05, smoothing");
+        seedRow("sunlight", ss.occlusionSeconds, "light tiles: lightTilesFor(N) per side, xi 0.05, smoothing");
         seedRow("shading+blending", ss.renderSeconds, "seed lighting");
         seedRow("total", totalSeed, ratio);
       }
@@ -155,6 +211,27 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
       row("shading+blending", sh.renderSeconds, res + "/2", "particles at half resolution");
       row("upscale", sh.upscaleSeconds, res + "/2", "bilateral (depth-aware), compute shader");
       row("total", totalHalf, res + "/2", "");
+      // The seed's Table 1 configuration: 1920×1080, particles at half resolution (volume blending
+      // tiles its node pool: render/VolumeResolve.h), as a ratio against the 640×360 ½ case.
+      if (!options.quick) {
+        render::RenderSettings table1 = s;
+        table1.width = 1920;
+        table1.height = 1080;
+        table1.downscale = 2;
+        render::RenderStats st1;
+        const auto t2 = std::chrono::steady_clock::now();
+        renderer.renderCloudscape(scene.cloud, q, table1, &st1);
+        const double total1 = std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
+        char ratio[160];
+        std::snprintf(ratio, sizeof ratio, "seed Table 1; total / total at %s/2 %.2f; %zu volume tiles, %zu overflow",
+                      res.c_str(), total1 / std::max(totalHalf, 1e-9), st1.volumeTiles, st1.fragmentOverflow);
+        row("generation", st1.generateSeconds, "1920x1080/2", "seed Table 1");
+        row("sunlight", st1.occlusionSeconds, "1920x1080/2", "seed Table 1");
+        row("shading+blending", st1.renderSeconds, "1920x1080/2",
+            "seed Table 1 (resolve " + std::to_string(static_cast<int>(1e3 * st1.resolveSeconds)) + " ms)");
+        row("upscale", st1.upscaleSeconds, "1920x1080/2", "seed Table 1, compute shader");
+        row("total", total1, "1920x1080/2", ratio);
+      }
 
       // Temporal stability: a slow forward move with a slight yaw.
       std::vector<double> means;
@@ -179,6 +256,7 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
                               " frames, 15 m + 0.05 deg yaw per frame"});
     }
   }
+  benchParticleCount(report, options, renderer);
   reportProgress(options.progress, "bench: render", 1.0);
 }
 

@@ -61,12 +61,13 @@ int runRender(int argc, char** argv) {
     ("speed", "--frames: metres per frame", cxxopts::value<double>()->default_value("40"))
     ("yaw", "--frames: degrees of yaw per frame", cxxopts::value<double>()->default_value("0.2"))
     ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel", cxxopts::value<int>()->default_value("16"))
+    ("volume-pool-mib", "volume blending: node pool budget of one screen tile in MiB (capped by the GL's storage block limit)", cxxopts::value<double>()->default_value("128"))
     ("no-occlusion", "constant sunlight (no light-space occlusion, no sun volume shadows)")
     ("lighting", "lighting model: cloud (sunlight per shading point, multiple scattering of the cloud around each point, ambient from the sky's opacity) or seed (the seed paper's per-particle model)", cxxopts::value<std::string>()->default_value("cloud"))
     ("sunlight", "sunlight per particle (the seed's occlusion pass) or per shading point (the sun optical-depth volume); default: the lighting model's (seed: particle, cloud: volume)", cxxopts::value<std::string>())
     ("out", "output image: FILE.png (tone-mapped sRGB) or FILE.exr (linear RGB, A = 1 - transmittance, Z)", cxxopts::value<std::string>())
-    ("width", "image width in pixels", cxxopts::value<long long>()->default_value("640"))
-    ("height", "image height in pixels", cxxopts::value<long long>()->default_value("360"))
+    ("width", "image width in pixels", cxxopts::value<long long>()->default_value("1280"))
+    ("height", "image height in pixels", cxxopts::value<long long>()->default_value("720"))
     ("exposure", "PNG tone mapping: 1 - exp(-exposure * radiance)", cxxopts::value<double>()->default_value("5"))
     ("terms", "lighting terms: single, multiple, ambient, all (comma-separated)", cxxopts::value<std::string>()->default_value("all"))
     ("quiet", "print nothing on success");
@@ -105,6 +106,10 @@ int runRender(int argc, char** argv) {
   settings.fragmentsPerPixel = args["fragments-per-pixel"].as<int>();
   if (settings.fragmentsPerPixel < 1 || settings.fragmentsPerPixel > 1024)
     throw UsageError("--fragments-per-pixel: expected 1 to 1024");
+  const double poolMiB = args["volume-pool-mib"].as<double>();
+  if (!std::isfinite(poolMiB) || poolMiB <= 0 || poolMiB > 1048576)
+    throw UsageError("--volume-pool-mib: expected a positive number of MiB up to 1048576");
+  settings.volumePoolBytes = static_cast<long double>(poolMiB) * 1048576.0L;
   settings.occlusion = args.count("no-occlusion") == 0;
   settings.lighting = render::parseLighting(args["lighting"].as<std::string>());
   settings.sunlight = args.count("sunlight") ? render::parseSunlight(args["sunlight"].as<std::string>())
@@ -150,12 +155,18 @@ int runRender(int argc, char** argv) {
     const fs::path file = frames > 1 || path ? framePath(out, frame) : out;
     if (ext == ".png") render::writePng(image, file, settings.view.lighting.skyColor, static_cast<float>(exposure));
     else render::writeExr(image, file);
-    if (!args.count("quiet"))
+    if (!args.count("quiet")) {
       std::printf("wrote %s: %dx%d, %zu particles, %s blending, generate %.1f ms, occlusion %.1f ms, render %.1f ms "
                   "(setup %.1f ms, %s)\n",
                   file.c_str(), image.width, image.height, stats.particles, render::toString(settings.blend),
                   1e3 * stats.generateSeconds, 1e3 * stats.occlusionSeconds, 1e3 * stats.renderSeconds,
                   1e3 * setupSeconds, context->description().c_str());
+      if (settings.blend == render::BlendMode::Volume)
+        std::printf("  volume blending: %zu tile(s), pool %.1f MiB, %zu fragments, %zu overflowed (alpha-blended), "
+                    "%zu pixels over %d segments\n",
+                    stats.volumeTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0, stats.fragments,
+                    stats.fragmentOverflow, stats.truncatedPixels, render::kMaxSegmentsPerPixel);
+    }
   }
   return kExitOk;
 }

@@ -17,6 +17,7 @@ namespace cloudlut::render {
   X(PFNGLCULLFACEPROC, CullFace)                                  \
   X(PFNGLFRONTFACEPROC, FrontFace)                                \
   X(PFNGLVIEWPORTPROC, Viewport)                                  \
+  X(PFNGLSCISSORPROC, Scissor)                                    \
   X(PFNGLFINISHPROC, Finish)                                      \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                            \
   X(PFNGLGENTEXTURESPROC, GenTextures)                            \

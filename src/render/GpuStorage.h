@@ -17,6 +17,8 @@ class StorageBudget {
 
   // GL_MAX_SHADER_STORAGE_BLOCK_SIZE alone (bytes).
   std::size_t maxBlockBytes() const { return maxBlock_; }
+  // The budget itself: the smaller of maxBlockBytes() and half the physical memory (bytes).
+  long double limitBytes() const { return limit_; }
   // UsageError "<what> needs N MiB of GPU buffer, more than the M MiB this OpenGL (...) and
   // machine allow" when `bytes` exceeds the budget.
   void require(long double bytes, const std::string& what) const;

@@ -17,10 +17,11 @@ namespace {
 
 constexpr GLuint kTilesBinding = 3;
 constexpr GLuint kRawSunlightBinding = 4;
+constexpr GLuint kNodesBinding = 7;
 // The tile buffer (occlusion.comp.glsl, block Tiles): ordered-int bounds (4 ints), node count,
-// capacity, overflow and a pad word, one list head per tile, then (particle, next) nodes.
+// capacity, overflow and a pad word, then one list head per tile; the (particle, next) nodes are
+// a buffer of their own (block TileNodes).
 constexpr std::size_t kTileCountersBytes = 32;
-constexpr std::size_t kTileHeadsBytes = 4 * static_cast<std::size_t>(kLightTiles) * kLightTiles;
 constexpr std::size_t kTileNodeBytes = 8;
 constexpr std::size_t kNodeOverflowOffset = 24;  // word 6 (after the node count and capacity)
 // Tile-list nodes per particle reserved (a particle covers a few tiles), and the least pool.
@@ -29,9 +30,14 @@ constexpr std::size_t kMinNodes = std::size_t{1} << 18;
 
 }  // namespace
 
+int lightTilesFor(std::size_t count) {
+  const double side = std::ceil(std::sqrt(static_cast<double>(count) / kParticlesPerLightTile));
+  return static_cast<int>(std::clamp(side, static_cast<double>(kLightTiles), static_cast<double>(kMaxLightTiles)));
+}
+
 LightOcclusion::LightOcclusion(const GlFunctions& gl, const StorageBudget& budget, ParticleBuffers& buffers)
-    : gl_(gl), budget_(budget), buffers_(buffers), tiles_(gl), rawSunlight_(gl) {
-  const std::string common = glslDefine("LIGHT_TILES", kLightTiles) + glslDefine("GROUP_SIZE", kGroupSize);
+    : gl_(gl), budget_(budget), buffers_(buffers), tiles_(gl), nodes_(gl), rawSunlight_(gl) {
+  const std::string common = glslDefine("GROUP_SIZE", kGroupSize);
   for (int stage = 0; stage < 4; ++stage) {
     stages_[stage] =
         linkComputeProgram(gl, {"particle_common.glsl", "occlusion.comp.glsl"}, common + glslDefine("STAGE", stage));
@@ -41,10 +47,13 @@ LightOcclusion::LightOcclusion(const GlFunctions& gl, const StorageBudget& budge
 
 std::size_t LightOcclusion::run(std::size_t count, const RenderSettings& s, float unitOpticalRadius, bool countOverflow) {
   if (!s.occlusion || count == 0) return 0;
-  const std::size_t headerBytes = kTileCountersBytes + kTileHeadsBytes;
+  const int tilesPerSide = lightTilesFor(count);
+  const std::size_t headerBytes =
+      kTileCountersBytes + 4 * static_cast<std::size_t>(tilesPerSide) * static_cast<std::size_t>(tilesPerSide);
   const std::size_t nodeCapacity = std::min<std::size_t>(std::max<std::size_t>(count * kNodesPerParticle, kMinNodes),
-                                                         (budget_.maxBlockBytes() - headerBytes) / kTileNodeBytes);
-  tiles_.ensure(headerBytes + nodeCapacity * kTileNodeBytes);
+                                                         budget_.maxBlockBytes() / kTileNodeBytes);
+  tiles_.ensure(headerBytes);
+  nodes_.ensure(nodeCapacity * kTileNodeBytes);
   rawSunlight_.ensure(count * sizeof(float));
   // Bounds at their identities (min ← +max int, max ← −max int), empty counters, empty lists.
   std::vector<GLuint> header(headerBytes / 4, 0xffffffffu);
@@ -58,6 +67,7 @@ std::size_t LightOcclusion::run(std::size_t count, const RenderSettings& s, floa
   tiles_.write(0, headerBytes, header.data());
   buffers_.records.bind(ParticleBuffers::kRecordsBinding);
   tiles_.bind(kTilesBinding);
+  nodes_.bind(kNodesBinding);
   rawSunlight_.bind(kRawSunlightBinding);
   const glm::vec3 sun = glm::normalize(s.view.lighting.sunDirection);
   const glm::vec3 helper = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
@@ -65,6 +75,7 @@ std::size_t LightOcclusion::run(std::size_t count, const RenderSettings& s, floa
   for (const GlProgram& p : stages_) {
     gl_.UseProgram(p.id());
     gl_.Uniform1ui(p.uniform("uCount"), static_cast<GLuint>(count));
+    gl_.Uniform1i(p.uniform("uTiles"), tilesPerSide);
     gl_.Uniform3f(p.uniform("uSun"), sun.x, sun.y, sun.z);
     gl_.Uniform3f(p.uniform("uLightU"), u.x, u.y, u.z);
     gl_.Uniform3f(p.uniform("uLightV"), v.x, v.y, v.z);

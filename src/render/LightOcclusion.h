@@ -2,8 +2,10 @@
 // Light-space occlusion (seed §5.3; shaders/occlusion.comp.glsl): the sunlight that reaches each
 // particle through the others, written into the records' sunlight slot (toParticle[2].w).
 //   1. the particles' bounds seen from the sun (light-space axes u, v ⟂ l);
-//   2. each particle, widened by half a tile, is listed in every tile of a kLightTiles² grid over
-//      those bounds that it covers;
+//   2. each particle, widened by half a tile, is listed in every tile of a T² grid over those
+//      bounds that it covers, T = lightTilesFor(N): about kParticlesPerLightTile particle centres
+//      per tile whatever N, so each particle tests a bounded number of others and the pass grows
+//      about as N (not N², as a fixed grid does);
 //   3. per particle, the ray from its centre toward the sun against every other particle of the
 //      tile holding the centre: sunlight = exp(−ξ Σ τ), τ = ρ σ · (chord through the homogeneous
 //      ellipsoid, unit-sphere units), σ the tables' unit optical radius, ξ = kOcclusionXi;
@@ -18,6 +20,12 @@
 #include "render/RenderTypes.h"
 
 namespace cloudlut::render {
+
+// Tiles per side of the light-space grid for `count` particles:
+// clamp(⌈√(count / kParticlesPerLightTile)⌉, kLightTiles, kMaxLightTiles).
+inline constexpr double kParticlesPerLightTile = 4.0;
+inline constexpr int kMaxLightTiles = 1024;
+int lightTilesFor(std::size_t count);
 
 class LightOcclusion {
  public:
@@ -34,7 +42,8 @@ class LightOcclusion {
   const StorageBudget& budget_;
   ParticleBuffers& buffers_;
   GlProgram stages_[4];
-  StorageBuffer tiles_;        // binding 3: bounds, node counters, tile heads, nodes
+  StorageBuffer tiles_;        // binding 3: bounds, node counters, tile heads
+  StorageBuffer nodes_;        // binding 7: tile-list nodes
   StorageBuffer rawSunlight_;  // binding 4: stage 3's result before smoothing
 };
 

@@ -15,7 +15,7 @@ enum Term : unsigned { kTermSingle = 1, kTermMultiple = 2, kTermAmbient = 4, kAl
 inline constexpr float kMinOpacityForDistance = 1.0f / 256.0f;
 inline constexpr int kMaxImageSide = 16384;
 // Occlusion (seed §5.3): extinction scale of the light-space occlusion, and the tile grid
-// (kLightTiles × kLightTiles tiles; render/LightOcclusion.h).
+// (at least kLightTiles × kLightTiles tiles, more for many particles; render/LightOcclusion.h).
 inline constexpr float kOcclusionXi = 0.05f;
 inline constexpr int kLightTiles = 64;
 // Volume blending: segments composited exactly per pixel (render/VolumeResolve.h), and the
@@ -56,6 +56,7 @@ struct RenderSettings {
   bool occlusion = true;        // light-space occlusion (sunlight 1 otherwise)
   bool smoothOcclusion = true;  // its density-weighted smoothing pass
   int fragmentsPerPixel = kDefaultFragmentsPerPixel;  // volume: node pool size per low-res pixel
+  long double volumePoolBytes = 0;  // volume: budget of one tile's node pool (0: the default; VolumeResolve.h)
   LightingModel lighting = LightingModel::Cloud;
   SunlightModel sunlight = SunlightModel::Volume;
 };
@@ -90,7 +91,7 @@ struct RenderStats {
   double generateSeconds = 0;   // GPU generation + sort (cloudscapes)
   double occlusionSeconds = 0;  // light-space tiling, occlusion, smoothing; the sun volume
   double renderSeconds = 0;     // shading + blending: draw (+ volume resolve), glFinish
-  double resolveSeconds = 0;    // of which the volume resolve
+  double resolveSeconds = 0;    // of which the volume resolves
   double upscaleSeconds = 0;    // bilateral upscale (GPU), glFinish
   double readbackSeconds = 0;   // the final image to the CPU
   std::size_t particles = 0;         // drawn
@@ -98,6 +99,8 @@ struct RenderStats {
   std::size_t fragments = 0;         // volume: fragments produced
   std::size_t fragmentOverflow = 0;  // volume: fragments alpha-blended for want of pool room
   std::size_t truncatedPixels = 0;   // volume: pixels with more than kMaxSegmentsPerPixel segments
+  std::size_t volumeTiles = 0;       // volume: screen tiles, each drawn and resolved on its own
+  std::size_t volumePoolBytes = 0;   // volume: bytes of the node pool (one tile's)
   std::size_t tileOverflow = 0;      // occlusion: tile-list nodes dropped
   std::size_t sunFootprintOverflow = 0;  // sun volume: particle-cascade pairs left to a coarser cascade
 };

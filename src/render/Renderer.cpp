@@ -124,7 +124,7 @@ struct Renderer::Impl {
     requireTargetSize(w, h, s);
     const bool blendVolume = s.blend == BlendMode::Volume;
     if (blendVolume)
-      volume.prepare(w, h, s.fragmentsPerPixel);
+      volume.prepare(w, h, s.fragmentsPerPixel, s.volumePoolBytes);
     else
       volume.bindUnused();
 
@@ -136,17 +136,20 @@ struct Renderer::Impl {
     gl.ClearBufferfv(GL_COLOR, 1, clearDistance);
 
     const Stopwatch drawClock;
-    particles.draw(count, useOrder, blendVolume, farPlane, w, h, s, sunVolume, sun);
     if (blendVolume) {
-      const Stopwatch resolveClock;
-      volume.resolve(target.colourTexture());
+      volume.run(target.colourTexture(),
+                 [&] { particles.draw(count, useOrder, true, farPlane, w, h, s, sunVolume, sun); });
       if (stats) {
-        stats->resolveSeconds = resolveClock.seconds();
         const VolumeResolve::Counts c = volume.counts();
         stats->fragments = c.fragments;
         stats->fragmentOverflow = c.overflow;
         stats->truncatedPixels = c.truncatedPixels;
+        stats->resolveSeconds = volume.resolveSeconds();
+        stats->volumeTiles = static_cast<std::size_t>(volume.tiling().count());
+        stats->volumePoolBytes = volume.tiling().poolBytes;
       }
+    } else {
+      particles.draw(count, useOrder, false, farPlane, w, h, s, sunVolume, sun);
     }
     if (stats) {
       stats->renderSeconds = drawClock.seconds();

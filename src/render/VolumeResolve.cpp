@@ -1,6 +1,11 @@
 #include "render/VolumeResolve.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "core/Errors.h"
 #include "render/ShaderSources.h"
+#include "render/Stopwatch.h"
 
 namespace cloudlut::render {
 
@@ -20,6 +25,37 @@ long double volumePoolBytes(int width, int height, int fragmentsPerPixel) {
                                     static_cast<long double>(height) * static_cast<long double>(fragmentsPerPixel);
 }
 
+VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long double budgetBytes) {
+  const long double perPixel = static_cast<long double>(kNodeBytes) * static_cast<long double>(fragmentsPerPixel);
+  const long double fit = std::floor((budgetBytes - 4.0L * kCounterWords) / perPixel);
+  if (!(fit >= 1.0L))
+    throw UsageError("volume blending: a node pool of " + std::to_string(static_cast<double>(budgetBytes / 1048576.0L)) +
+                     " MiB holds not even one pixel's " + std::to_string(fragmentsPerPixel) +
+                     " fragments (--volume-pool-mib, --fragments-per-pixel)");
+  auto divideUp = [](long double a, long double b) { return static_cast<int>(std::ceil(a / b)); };
+  VolumeTiling t;
+  t.width = width;
+  t.height = height;
+  const long double w = width, h = height;
+  if (fit >= w * h) {  // one tile
+    t.tileWidth = width;
+    t.tileHeight = height;
+  } else if (fit >= w) {  // bands of whole rows, as even as the count allows
+    t.rows = divideUp(h, std::floor(fit / w));
+    t.tileWidth = width;
+    t.tileHeight = divideUp(h, t.rows);
+  } else {  // runs of pixels within each row
+    t.columns = divideUp(w, fit);
+    t.tileWidth = divideUp(w, t.columns);
+    t.tileHeight = 1;
+  }
+  t.columns = divideUp(w, t.tileWidth);
+  t.rows = divideUp(h, t.tileHeight);
+  t.poolBytes = 4 * kCounterWords + kNodeBytes * static_cast<std::size_t>(fragmentsPerPixel) *
+                                        static_cast<std::size_t>(t.tileWidth) * static_cast<std::size_t>(t.tileHeight);
+  return t;
+}
+
 VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
     : gl_(gl), budget_(budget), pool_(gl) {
   program_ = linkComputeProgram(gl, {"volume_fragments.glsl", "volume_resolve.comp.glsl"},
@@ -34,15 +70,13 @@ VolumeResolve::~VolumeResolve() {
 
 std::string VolumeResolve::fragmentDefines() { return glslDefine("FRAGMENT_NODE_WORDS", kFragmentNodeWords); }
 
-void VolumeResolve::prepare(int width, int height, int fragmentsPerPixel) {
-  budget_.require(volumePoolBytes(width, height, fragmentsPerPixel),
-                  "volume blending at " + std::to_string(width) + "x" + std::to_string(height) + " with " +
-                      std::to_string(fragmentsPerPixel) + " fragments per pixel (try --downscale 2)");
-  const std::size_t capacity =
-      static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(fragmentsPerPixel);
-  pool_.ensure(4 * kCounterWords + capacity * kNodeBytes);
-  const GLuint counters[kCounterWords] = {0, static_cast<GLuint>(capacity), 0, 0};
-  pool_.write(0, sizeof counters, counters);
+VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel, long double budgetBytes) {
+  const long double budget = std::min(budgetBytes > 0 ? budgetBytes : kDefaultVolumePoolBytes, budget_.limitBytes());
+  tiling_ = planVolumeTiles(width, height, fragmentsPerPixel, budget);
+  budget_.require(static_cast<long double>(tiling_.poolBytes),
+                  "volume blending of a " + std::to_string(tiling_.tileWidth) + "x" + std::to_string(tiling_.tileHeight) +
+                      " tile with " + std::to_string(fragmentsPerPixel) + " fragments per pixel");
+  pool_.ensure(tiling_.poolBytes);
   if (!heads_ || width != width_ || height != height_) {
     if (heads_) gl_.DeleteTextures(1, &heads_);
     gl_.GenTextures(1, &heads_);
@@ -51,9 +85,37 @@ void VolumeResolve::prepare(int width, int height, int fragmentsPerPixel) {
     width_ = width;
     height_ = height;
   }
+  // Once per frame: a tile's fragments touch only its own pixels' heads.
   gl_.ClearTexImage(heads_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &kListEnd);
-  gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-  pool_.bind(kPoolBinding);
+  counts_ = {};
+  resolveSeconds_ = 0;
+  return tiling_;
+}
+
+void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawTile) {
+  const std::size_t capacity = (tiling_.poolBytes - 4 * kCounterWords) / kNodeBytes;
+  for (int row = 0; row < tiling_.rows; ++row)
+    for (int column = 0; column < tiling_.columns; ++column) {
+      const int x0 = column * tiling_.tileWidth, y0 = row * tiling_.tileHeight;
+      const int x1 = std::min(x0 + tiling_.tileWidth, width_), y1 = std::min(y0 + tiling_.tileHeight, height_);
+      const GLuint counters[kCounterWords] = {0, static_cast<GLuint>(capacity), 0, 0};
+      pool_.write(0, sizeof counters, counters);
+      fullBarrier(gl_);
+      gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+      pool_.bind(kPoolBinding);
+      gl_.Enable(GL_SCISSOR_TEST);
+      gl_.Scissor(x0, y0, x1 - x0, y1 - y0);
+      drawTile();
+      gl_.Disable(GL_SCISSOR_TEST);
+      const Stopwatch clock;
+      resolveTile(colourTexture, x0, y0, x1, y1);
+      resolveSeconds_ += clock.seconds();
+      GLuint c[kCounterWords] = {0, 0, 0, 0};
+      pool_.read(0, sizeof c, c);
+      counts_.fragments += c[0];
+      counts_.overflow += c[2];
+      counts_.truncatedPixels += c[3];
+    }
 }
 
 void VolumeResolve::bindUnused() {
@@ -67,24 +129,19 @@ void VolumeResolve::bindUnused() {
   gl_.BindImageTexture(kHeadsUnit, unusedHeads_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
 }
 
-void VolumeResolve::resolve(GLuint colourTexture) {
+void VolumeResolve::resolveTile(GLuint colourTexture, int x0, int y0, int x1, int y1) {
   fullBarrier(gl_);
   gl_.UseProgram(program_.id());
   pool_.bind(kPoolBinding);
   gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
   gl_.BindImageTexture(kColourUnit, colourTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  gl_.Uniform2i(program_.uniform("uSize"), width_, height_);
-  gl_.DispatchCompute(groupsFor(static_cast<std::size_t>(width_), kGroupSide),
-                      groupsFor(static_cast<std::size_t>(height_), kGroupSide), 1);
+  gl_.Uniform2i(program_.uniform("uOrigin"), x0, y0);
+  gl_.Uniform2i(program_.uniform("uEnd"), x1, y1);
+  gl_.DispatchCompute(groupsFor(static_cast<std::size_t>(x1 - x0), kGroupSide),
+                      groupsFor(static_cast<std::size_t>(y1 - y0), kGroupSide), 1);
   fullBarrier(gl_);
   gl_.Finish();
   checkGlError(gl_, "resolving the volume fragment lists");
-}
-
-VolumeResolve::Counts VolumeResolve::counts() const {
-  GLuint c[kCounterWords] = {0, 0, 0, 0};
-  pool_.read(0, sizeof c, c);
-  return {c[0], c[2], c[3]};
 }
 
 }  // namespace cloudlut::render

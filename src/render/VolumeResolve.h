@@ -7,7 +7,17 @@
 // pieces are composited front to back. At most kMaxSegmentsPerPixel segments per pixel (the
 // nearest) are composited exactly; farther ones, and the fragments that found no room in the pool
 // (alpha-blended by the particle pass), are composited behind them.
+//
+// Tiles: the node pool of one shader storage block holds the lists of one screen tile at a time.
+// The buffer is cut into bands (or, when one row does not fit, runs of pixels) of at most
+// P = ⌊(B − 16) / (28 · F)⌋ pixels, B the pool budget in bytes (the smaller of the settings'
+// volume pool budget and what StorageBudget allows: GL_MAX_SHADER_STORAGE_BLOCK_SIZE, half the
+// machine's memory), F the fragments per pixel (the expected fragment load), 28 the bytes of a
+// node; the particles are drawn once per tile, scissored to it, and the tile is resolved before
+// the pool is emptied for the next. Every pixel sees its whole list, so the tiled image is the
+// untiled one.
 #include <cstddef>
+#include <functional>
 #include <string>
 
 #include "render/GlFunctions.h"
@@ -24,6 +34,23 @@ inline constexpr int kFragmentNodeWords = 7;
 // fragmentsPerPixel nodes per pixel.
 long double volumePoolBytes(int width, int height, int fragmentsPerPixel);
 
+// The default budget of the node pool (bytes), before StorageBudget's limit.
+inline constexpr long double kDefaultVolumePoolBytes = 128.0L * 1048576.0L;
+
+// The tiles of a width × height buffer: columns × rows tiles of tileWidth × tileHeight pixels
+// (the last column and row clipped to the buffer), each one pool of poolBytes bytes.
+struct VolumeTiling {
+  int width = 0, height = 0;
+  int tileWidth = 0, tileHeight = 0;
+  int columns = 0, rows = 0;
+  std::size_t poolBytes = 0;
+  int count() const { return columns * rows; }
+};
+
+// The tiling of the header's rule for a pool budget of `budgetBytes`; UsageError when not even
+// one pixel's nodes fit.
+VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long double budgetBytes);
+
 class VolumeResolve {
  public:
   VolumeResolve(const GlFunctions& gl, const StorageBudget& budget);
@@ -34,22 +61,27 @@ class VolumeResolve {
   // The #defines of the programs that write or read the lists (FRAGMENT_NODE_WORDS).
   static std::string fragmentDefines();
 
-  // Sizes the pool for a width × height buffer (UsageError beyond the storage budget), empties it
-  // and the lists, and binds both for the particle pass (pool at binding 2, heads at image unit 0).
-  void prepare(int width, int height, int fragmentsPerPixel);
+  // Plans the tiles of a width × height buffer for a pool budget of `budgetBytes` (capped by the
+  // storage budget; 0: kDefaultVolumePoolBytes), sizes the pool for one tile, empties the lists.
+  VolumeTiling prepare(int width, int height, int fragmentsPerPixel, long double budgetBytes);
+  // For each tile of the prepared tiling: empties the pool, binds it and the heads for the
+  // particle pass (pool at binding 2, heads at image unit 0), scissors to the tile, calls
+  // drawTile, then composites the tile's lists into the colour texture (RGBA32F, as prepared):
+  // in, the fragments that found no room (radiance, transmittance); out, the result. counts()
+  // then holds the sums over the tiles.
+  void run(GLuint colourTexture, const std::function<void()>& drawTile);
   // Binds a small pool and a 1×1 head image, for a particle pass that stores no fragments.
   void bindUnused();
-
-  // Composites the lists into the colour texture (RGBA32F, width × height as prepared): in, the
-  // fragments that found no room (radiance, transmittance); out, the result.
-  void resolve(GLuint colourTexture);
 
   struct Counts {
     std::size_t fragments = 0;        // produced
     std::size_t overflow = 0;         // alpha-blended for want of pool room
     std::size_t truncatedPixels = 0;  // pixels with more than kMaxSegmentsPerPixel segments
   };
-  Counts counts() const;
+  Counts counts() const { return counts_; }
+  const VolumeTiling& tiling() const { return tiling_; }
+  // Seconds the resolves of the last run took (glFinish each).
+  double resolveSeconds() const { return resolveSeconds_; }
 
   static constexpr int kGroupSide = 8;  // work groups of kGroupSide² pixels
 
@@ -60,6 +92,11 @@ class VolumeResolve {
   StorageBuffer pool_;
   GLuint heads_ = 0, unusedHeads_ = 0;
   int width_ = 0, height_ = 0;
+  VolumeTiling tiling_;
+  Counts counts_;
+  double resolveSeconds_ = 0;
+
+  void resolveTile(GLuint colourTexture, int x0, int y0, int x1, int y1);
 };
 
 }  // namespace cloudlut::render

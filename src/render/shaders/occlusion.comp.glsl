@@ -1,7 +1,7 @@
 // occlusion.comp.glsl — light-space occlusion (seed §5.3). Preceded by particle_common.glsl and
 // the defines of render/LightOcclusion.cpp, which sizes the buffers and dispatches the stages:
-// LIGHT_TILES (tiles per side of the light-space grid), GROUP_SIZE (threads per work group) and
-// STAGE:
+// GROUP_SIZE (threads per work group) and STAGE; the grid's tiles per side are uTiles (from the
+// particle count, render/LightOcclusion.h):
 //   STAGE 0: bounds of the particles seen from the sun (atomic min/max in light space u, v);
 //   STAGE 1: tiling: each particle, extended by half a tile (conservative), is pushed onto the
 //            linked list of every tile it covers (atomic counter + atomic exchange of heads);
@@ -13,9 +13,10 @@
 
 layout(local_size_x = GROUP_SIZE) in;
 
-const int TILES = LIGHT_TILES;
 const uint NIL = 0xffffffffu;
 
+uniform int uTiles;     // tiles per side of the light-space grid
+#define TILES uTiles
 uniform uint uCount;
 uniform vec3 uSun;      // toward the sun
 uniform vec3 uLightU;   // light-space axes, perpendicular to uSun
@@ -30,7 +31,10 @@ layout(std430, binding = 3) buffer Tiles {
   uint nodeCapacity;
   uint nodeOverflow;
   uint pad;
-  uint heads[TILES * TILES];
+  uint heads[];         // uTiles² list heads
+};
+
+layout(std430, binding = 7) buffer TileNodes {
   uvec2 nodes[];        // (particle, next)
 };
 

@@ -61,30 +61,41 @@ void main() {
   vec3 o = toParticle * (uEye - p.centerDensity.xyz);
   vec3 d = toParticle * dir;
 
-  // |o + t d|^2 = 1, in the cancellation-free form.
+  // |o + t d|^2 = 1, a t² + 2 b t + c = 0, roots in the cancellation-free form: the whole chord
+  // [tEnter, tExit] (world distance from the eye; tEnter ≤ 0 when the eye is inside, c ≤ 0).
   float a = dot(d, d);
   float b = dot(o, d);
   float c = dot(o, o) - 1.0;
   float disc = b * b - a * c;
-  if (c <= 0.0 || b >= 0.0 || disc <= 0.0) discard;  // eye inside, sphere behind, or a miss
-  float q = -b + sqrt(disc);
-  float tEnter = c / q;
-  float tExit = q / a;
+  bool inside = c <= 0.0;
+  if (disc <= 0.0 || (!inside && b >= 0.0)) discard;  // a miss, or the sphere behind the eye
+  float q = b < 0.0 ? -b + sqrt(disc) : -b - sqrt(disc);
+  float tEnter = b < 0.0 ? c / q : q / a;
+  float tExit = b < 0.0 ? q / a : c / q;
+  // The part the eye sees, [tNear, tExit], and its share of the chord's length (1 outside).
+  float tNear = max(tEnter, 0.0);
+  float front = inside ? clamp((tExit - tNear) / max(tExit - tEnter, 1e-30), 0.0, 1.0) : 1.0;
 
   vec3 S = normalize(o + tEnter * d);
   vec3 v = normalize(d);
   vec3 l = normalize(toParticle * uSunDirection);
 
   // Optical depth (seed §4.4): tau = rho * sigma * L * mean density, L in unit-sphere units.
+  // Eye inside (docs/LIGHTING.md, "Camera inside a particle"): the tables hold whole chords, so
+  // the front part takes the mean density of its whole chord (the entry S behind the eye, the
+  // same direction v): τ_front = front · τ_chord (dimensionless), and everything below (the
+  // scattered radiance through 1 − e^{−τ}, the mean scattering point) uses τ_front with the
+  // chord's table entries. Exact for a homogeneous particle.
   vec2 od = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(S, v), uOpticalDepthDims).xy;
   float chord = chordLength(S, v);
-  float tau = particleOpticalDepth(rho, uUnitOpticalRadius, chord, od.x);
+  float tau = front * particleOpticalDepth(rho, uUnitOpticalRadius, chord, od.x);
   float transmittance = exp(-tau);
 
   // Where the light is scattered on average along the chord: its first matter, then the
-  // e^{−τt}-weighted mean of the rest (world point; particle space px).
-  float firstMatter = clamp(od.y, 0.0, 1.0);
-  float tMean = tEnter + (tExit - tEnter) * (firstMatter + (1.0 - firstMatter) * meanScatteringFraction(tau));
+  // e^{−τt}-weighted mean of the rest (world point; particle space px). Inside, the matter
+  // starts at the eye.
+  float firstMatter = inside ? 0.0 : clamp(od.y, 0.0, 1.0);
+  float tMean = tNear + (tExit - tNear) * (firstMatter + (1.0 - firstMatter) * meanScatteringFraction(tau));
   vec3 xMean = uEye + dir * tMean;
 
   // Sunlight reaching the particle: per particle from the occlusion pass (seed §5.3), or at the
@@ -141,13 +152,13 @@ void main() {
   if (uVolume != 0) {
     uint node = atomicAdd(fragCount, 1u);
     if (node < fragCapacity) {
-      storeFragment(node, tEnter, tExit, tau, radiance, imageAtomicExchange(uHeads, ivec2(gl_FragCoord.xy), node));
+      storeFragment(node, tNear, tExit, tau, radiance, imageAtomicExchange(uHeads, ivec2(gl_FragCoord.xy), node));
       oColor = vec4(0.0, 0.0, 0.0, 1.0);  // stored: composited by volume_resolve.comp.glsl
     } else {
       atomicAdd(fragOverflow, 1u);  // no room: alpha-blended into the colour image (fallback)
     }
   }
   oDistance = 1.0 - transmittance >= uMinOpacityForDistance
-                  ? tEnter + clamp(od.y, 0.0, 1.0) * (tExit - tEnter)
+                  ? tNear + firstMatter * (tExit - tNear)
                   : uNoDistance;
 }

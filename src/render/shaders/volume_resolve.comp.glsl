@@ -19,7 +19,8 @@ layout(local_size_x = GROUP_SIDE, local_size_y = GROUP_SIDE) in;
 
 layout(r32ui, binding = 0) uniform readonly uimage2D uHeads;
 layout(rgba32f, binding = 1) uniform image2D uColor;  // in: overflow (rgb, T); out: the result
-uniform ivec2 uSize;
+uniform ivec2 uOrigin;  // the tile's first pixel (render/VolumeResolve.h: tiles)
+uniform ivec2 uEnd;     // one past its last pixel
 
 float seg_a[MAX_SEGMENTS];
 float seg_b[MAX_SEGMENTS];
@@ -34,8 +35,8 @@ float opacityRatio(float tau) { return tau < 1e-4f ? 1.0f + 0.5f * tau : tau / (
 float expRatio(float x) { return x < 1e-4f ? 1.0f - 0.5f * x : (1.0f - exp(-x)) / x; }
 
 void main() {
-  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  if (px.x >= uSize.x || px.y >= uSize.y) return;
+  ivec2 px = uOrigin + ivec2(gl_GlobalInvocationID.xy);
+  if (px.x >= uEnd.x || px.y >= uEnd.y) return;
   vec4 overflow = imageLoad(uColor, px);
   int n = 0;
   vec3 tailC = vec3(0.0f);

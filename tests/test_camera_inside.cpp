@@ -1,0 +1,89 @@
+// A camera inside a particle (particle.frag.glsl: the part of the chord in front of the eye)
+// against the path-traced ground truth of the same particles (reference/ScenePathTracer, which
+// starts every ray at the eye whatever contains it). The bench cluster with the eye inside one
+// particle, looking out of the cluster (the containing particle is all there is to see) and into
+// it. The particle used to be discarded; that is the render of the scene without it, which the
+// test measures too.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "bake/OpticalDepthBaker.h"
+#include "core/Medium.h"
+#include "reference/ReferenceImage.h"
+#include "reference/SceneCompare.h"
+#include "render/GlContext.h"
+#include "render/Renderer.h"
+#include "scene/Scene.h"
+#include "support/BakedFixtures.h"
+#include "support/RenderLuts.h"
+#include "support/TempDir.h"
+
+using namespace cloudlut;
+using namespace cloudlut::test;
+
+TEST_CASE("camera inside a particle: the front of its chord against the path tracer", "[render][lighting][inside]") {
+  constexpr int kWidth = 40, kHeight = 26;
+  TempDir tmp;
+  const Medium medium;
+  bake::OpticalDepthSettings ods;
+  ods.dims = {32, 16, 32, 16};
+  const Table4D od = bake::bakeOpticalDepth(ReferenceParticle(medium.model, medium.seed), ods);
+  const bake::ScatteringResult& sc = defaultScattering(0);
+  REQUIRE(sc.single);
+  REQUIRE(sc.multiple);
+  writeLutSet(tmp / "luts", {&od, &*sc.single, &*sc.multiple});
+  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  auto context = render::createHeadlessContext();
+  render::Renderer renderer(*context, luts);
+
+  const scene::Scene s = scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/cluster.json");
+  // Particle 2 (centre (0.156, 0.058, 0.886), radius 0.873) holds the eye; no other one does.
+  const std::size_t holder = 2;
+  const glm::vec3 eye(0.156f, 0.10f, 1.20f);
+  for (std::size_t i = 0; i < s.particles.size(); ++i) {
+    const scene::Particle& p = s.particles[i];
+    const float r = glm::length(eye - p.center) / p.radii.x;
+    REQUIRE((i == holder) == (r < 1.0f));
+  }
+  std::vector<scene::Particle> without = s.particles;
+  without.erase(without.begin() + static_cast<std::ptrdiff_t>(holder));
+
+  struct Case {
+    const char* name;
+    glm::vec3 target;
+    double maxError;  // nc_rel_rmse bound, from the measured figures in docs/LIGHTING.md plus the noise
+  };
+  const Case cases[] = {{"looking out", {0.156f, 0.4f, 6.0f}, 0.36}, {"looking in", {0.0f, 0.0f, -1.0f}, 0.2}};
+  for (const Case& c : cases) {
+    INFO(c.name);
+    scene::View view = scene::resolveView(s, {});
+    view.camera.eye = eye;
+    view.camera.target = c.target;
+    view.camera.fovDeg = 60.0f;
+    reference::ScenePtSettings pt;
+    pt.samplesPerPixel = 48;
+    const io::ExrImage ref = reference::renderReferenceScene(s.particles, view, medium, pt, kWidth, kHeight);
+
+    render::RenderSettings rs;
+    rs.width = kWidth;
+    rs.height = kHeight;
+    rs.view = view;
+    rs.blend = render::BlendMode::Volume;
+    const render::Image inside = renderer.render(s.particles, rs);
+    const render::Image discarded = renderer.render(without, rs);
+    const reference::ImageErrors e = reference::compareToReference(kWidth, kHeight, inside.rgba.data(), ref);
+    const reference::ImageErrors d = reference::compareToReference(kWidth, kHeight, discarded.rgba.data(), ref);
+    std::printf("[camera inside] %-11s ref noise %.3f  front segment nc_rel_rmse %.3f bias %+.3f  "
+                "discarded nc_rel_rmse %.3f bias %+.3f\n",
+                c.name, e.referenceNoise, e.noiseCorrectedRelativeRmse, e.relativeBias, d.noiseCorrectedRelativeRmse,
+                d.relativeBias);
+    CHECK(inside.nonFiniteCount() == 0);
+    CHECK(e.noiseCorrectedRelativeRmse <= c.maxError);
+    CHECK(std::abs(e.relativeBias) <= 0.15);
+    CHECK(std::abs(e.relativeBias) < 0.5 * std::abs(d.relativeBias));
+    CHECK(e.noiseCorrectedRelativeRmse < 0.5 * d.noiseCorrectedRelativeRmse);
+  }
+}

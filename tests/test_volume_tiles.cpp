@@ -1,0 +1,129 @@
+// Volume-aware blending in screen tiles (render/VolumeResolve.h): the tiling rule, a 1080p
+// render within the GL's storage block limit, and tiled against untiled images of a scene whose
+// particles overlap several deep.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "render/GlContext.h"
+#include "render/Renderer.h"
+#include "render/VolumeResolve.h"
+#include "scene/Scene.h"
+#include "support/CliRunner.h"
+#include "support/RenderLuts.h"
+
+using namespace cloudlut;
+using namespace cloudlut::render;
+using namespace cloudlut::scene;
+using namespace cloudlut::test;
+
+namespace {
+
+// The node-pool bytes of an untiled w × h buffer: four counters and 28 bytes per node.
+double untiledPoolBytes(int w, int h, int fragmentsPerPixel) { return 16.0 + 28.0 * w * h * fragmentsPerPixel; }
+
+}  // namespace
+
+TEST_CASE("volume tiles: every tile's pool fits the budget and the tiles cover the buffer once", "[render][volume]") {
+  struct Case {
+    int w, h, fpp;
+    double budget;
+  };
+  for (const Case c : {Case{1280, 720, 16, 128.0 * 1048576.0}, Case{960, 540, 16, 128.0 * 1048576.0},
+                       Case{1920, 1080, 64, 8.0 * 1048576.0}, Case{100, 7, 3, 16.0 + 28.0 * 3 * 45},
+                       Case{64, 48, 16, 1e9}}) {
+    INFO(c.w << "x" << c.h << " fpp " << c.fpp << " budget " << c.budget);
+    const VolumeTiling t = planVolumeTiles(c.w, c.h, c.fpp, c.budget);
+    CHECK(static_cast<double>(t.poolBytes) <= c.budget);
+    CHECK(static_cast<double>(t.poolBytes) == untiledPoolBytes(t.tileWidth, t.tileHeight, c.fpp));
+    // Coverage: the tiles reach the far edges and the last ones are not empty.
+    CHECK(t.columns * t.tileWidth >= c.w);
+    CHECK((t.columns - 1) * t.tileWidth < c.w);
+    CHECK(t.rows * t.tileHeight >= c.h);
+    CHECK((t.rows - 1) * t.tileHeight < c.h);
+    // No more tiles than the budget forces (at most one more than the pixel count over the tile).
+    const double perTile = std::floor((c.budget - 16.0) / (28.0 * c.fpp));
+    CHECK(t.count() <= std::max(1.0, std::ceil(double(c.w) * c.h / perTile)) * 2.0);
+    if (untiledPoolBytes(c.w, c.h, c.fpp) <= c.budget) CHECK(t.count() == 1);
+  }
+  // The seed's Table 1 buffer (960×540 at 16 fragments) needs 221 MiB: two tiles of 128 MiB.
+  CHECK(planVolumeTiles(960, 540, 16, 128.0 * 1048576.0).count() == 2);
+  CHECK_THROWS(planVolumeTiles(64, 64, 1024, 1000.0));
+}
+
+TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overlap", "[render][volume]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
+  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
+  auto context = createHeadlessContext();
+  Renderer renderer(*context, luts);
+  RenderSettings s;
+  s.width = 96;
+  s.height = 64;
+  s.view = resolveView(scene, {});
+  s.view.camera.eye = {0.0f, 1.0f, 5.0f};  // closer: the cluster fills most of the image
+  s.blend = BlendMode::Volume;
+  RenderStats whole;
+  const Image reference = renderer.render(scene.particles, s, &whole);
+  REQUIRE(whole.volumeTiles == 1);
+  REQUIRE(whole.fragmentOverflow == 0);
+  REQUIRE(whole.fragments > std::size_t(3) * 96 * 64 / 4);  // several particles deep over much of it
+
+  // Bands of 5 rows, then runs of 40 pixels within a row.
+  for (const int tilePixels : {5 * 96, 40}) {
+    INFO("tile of " << tilePixels << " pixels");
+    s.volumePoolBytes = 16.0L + 28.0L * s.fragmentsPerPixel * tilePixels;
+    RenderStats tiled;
+    const Image image = renderer.render(scene.particles, s, &tiled);
+    CHECK(tiled.volumeTiles > 10);
+    CHECK(tiled.fragments == whole.fragments);
+    CHECK(tiled.fragmentOverflow == 0);
+    CHECK(tiled.truncatedPixels == whole.truncatedPixels);
+    double maxDiff = 0;
+    for (std::size_t i = 0; i < image.rgba.size(); ++i)
+      maxDiff = std::max(maxDiff, double(std::abs(image.rgba[i] - reference.rgba[i])));
+    std::size_t distanceMismatch = 0;
+    for (std::size_t i = 0; i < image.distance.size(); ++i)
+      if (image.distance[i] != reference.distance[i]) ++distanceMismatch;
+    std::printf("[volume tiles] %zu tiles of %d pixels: max |tiled - untiled| %.2e\n", tiled.volumeTiles, tilePixels,
+                maxDiff);
+    CHECK(maxDiff <= 1e-4);
+    CHECK(distanceMismatch == 0);
+  }
+}
+
+TEST_CASE("volume tiles: a 1920x1080 volume render fits the GL's storage block limit", "[render][volume]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
+  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
+  auto context = createHeadlessContext();
+  Renderer renderer(*context, luts);
+  RenderSettings s;
+  s.width = 1920;
+  s.height = 1080;
+  s.view = resolveView(scene, {});
+  s.blend = BlendMode::Volume;
+  s.downscale = 2;  // the seed's Table 1: particles at half resolution
+  RenderStats stats;
+  const Image image = renderer.render(scene.particles, s, &stats);
+  REQUIRE(image.width == 1920);
+  REQUIRE(image.height == 1080);
+  CHECK(image.nonFiniteCount() == 0);
+  // Untiled it would need more than llvmpipe's 128 MiB block.
+  CHECK(untiledPoolBytes(960, 540, s.fragmentsPerPixel) > 128.0 * 1048576.0);
+  CHECK(stats.volumeTiles >= 2);
+  CHECK(static_cast<double>(stats.volumePoolBytes) <= 128.0 * 1048576.0);
+  CHECK(stats.fragments > 0);
+  CHECK(stats.fragmentOverflow == 0);
+  std::size_t covered = 0;
+  for (std::size_t i = 3; i < image.rgba.size(); i += 4)
+    if (image.rgba[i] > 0.05f) ++covered;
+  CHECK(covered > std::size_t(1920) * 1080 / 20);
+  std::printf("[volume tiles] 1920x1080 / 2: %zu tiles, pool %.1f MiB, %zu fragments\n", stats.volumeTiles,
+              double(stats.volumePoolBytes) / 1048576.0, stats.fragments);
+}
