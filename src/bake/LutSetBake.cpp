@@ -7,6 +7,7 @@
 #include "core/Defaults.h"
 #include "core/ReferenceParticle.h"
 #include "io/LutSetTransaction.h"
+#include "scene/AtmosphereJson.h"
 
 namespace cloudlut::bake {
 
@@ -83,6 +84,17 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
     scatteringReport = result.report;
   }
 
+  if (plan.atmosphere) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const AtmosphereTables atmosphere = bakeAtmosphere(plan.atmosphereParameters, {}, progress);
+    timings["atmosphere_s"] = secondsSince(t0);
+    done(stageDone);
+    // radiance and irradiance are not confined to [0, 1]: no 8-bit storage
+    const io::SampleType type = plan.precision == io::SampleType::U8 ? io::SampleType::Half : plan.precision;
+    for (const Table4D* t : {&atmosphere.transmittance, &atmosphere.multipleScattering, &atmosphere.irradiance})
+      entries[t->name()] = io::writeTableFiles(*t, type, dir, plan.formats);
+  }
+
   nlohmann::json manifest = io::makeManifest(plan.generator, entries);
   manifest["parameters"] = {{"extinction_per_m", plan.od.extinction}, {"radius_m", plan.od.radius},
                             {"density_model", toString(plan.model)}, {"seed", plan.seed}};
@@ -91,6 +103,7 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
     manifest["parameters"]["method"] = toString(plan.sc.method);
     manifest["scattering_report"] = scatteringReport;
   }
+  if (plan.atmosphere) manifest["atmosphere"] = scene::atmosphereToJson(plan.atmosphereParameters);
   manifest["bake_seconds"] = timings;
   if (plan.forScene) {
     forScene["scene"] = plan.forScene->source;

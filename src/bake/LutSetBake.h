@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bake/AtmosphereBaker.h"
 #include "bake/OpticalDepthBaker.h"
 #include "bake/ResolutionChoice.h"
 #include "bake/ScatteringBaker.h"
@@ -32,12 +33,15 @@ struct LutSetPlan {
   std::string generator;      // the manifest's "generator", e.g. "cloudlut 0.1.0"
   std::optional<SceneNeeds> forScene;  // choose the resolutions for this scene
   double tolerance = 0.01;             // ... within this 95th-percentile error
+  bool atmosphere = false;    // bake the atmosphere's tables (bake/AtmosphereBaker.h)
+  glsl::AtmosphereParameters atmosphereParameters = glsl::defaultAtmosphere();
   bool scattering() const { return sc.single || sc.multiple; }
 };
 
 // Bakes and writes the plan's tables, then the manifest (format, version, generator,
 // "parameters" {extinction_per_m, radius_m, density_model, seed, orders, method},
-// "scattering_report", "bake_seconds", "for_scene", "tables"), and returns the manifest. With
+// "scattering_report", "bake_seconds", "for_scene", "tables"; with the atmosphere, "atmosphere"
+// holds its parameters), and returns the manifest. With
 // a scene, plan.od.dims and plan.sc.dims become the chosen resolutions. `stageDone` is called
 // after each table's bake (a progress bar ends its line there).
 nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress = {},

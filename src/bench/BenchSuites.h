@@ -32,6 +32,10 @@ void benchTableLayout(BenchReport& report, const BenchOptions& options);
 // occlusion, shading + blending, upscale) and frame-to-frame stability (RenderBench.cpp).
 void benchRender(BenchReport& report, const BenchOptions& options);
 
+// Atmosphere (AtmosphereBench.cpp): the tables' bake time on 2 threads, and the transmittance,
+// single-scattered and all-orders sky against the brute-force reference (AtmosphereComparison.h).
+void benchAtmosphere(BenchReport& report, const BenchOptions& options);
+
 // Ground truth (GroundTruthBench.cpp): every rendering method on data/bench_scenes, time against
 // error relative to the path-traced reference; references and LUTs cached under `out`.
 void benchGroundTruth(BenchReport& report, const BenchOptions& options, const std::filesystem::path& out);

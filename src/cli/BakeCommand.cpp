@@ -3,6 +3,7 @@
 // written; files are written under temporary names and renamed, the manifest last.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "cli/TtyProgress.h"
 #include "core/Defaults.h"
 #include "core/Errors.h"
+#include "scene/AtmosphereJson.h"
 
 namespace cloudlut::cli {
 namespace {
@@ -30,10 +32,10 @@ std::set<std::string> parseTables(const std::string& text) {
     const std::string t = text.substr(start, pos == std::string::npos ? std::string::npos : pos - start);
     if (t == "all") {
       tables.insert({"optical-depth", "single", "multiple"});
-    } else if (t == "optical-depth" || t == "single" || t == "multiple") {
+    } else if (t == "optical-depth" || t == "single" || t == "multiple" || t == "atmosphere") {
       tables.insert(t);
     } else {
-      throw UsageError("--tables: unknown table '" + t + "' (optical-depth, single, multiple, all)");
+      throw UsageError("--tables: unknown table '" + t + "' (optical-depth, single, multiple, atmosphere, all)");
     }
     if (pos == std::string::npos) break;
     start = pos + 1;
@@ -96,11 +98,26 @@ void configureScattering(bake::ScatteringSettings& sc, const cxxopts::ParseResul
   else throw UsageError("--method: expected fast or paper, got '" + method + "'");
 }
 
+// The atmosphere's parameters from a JSON file: an object of the fields of a scene's "sky" (or a
+// scene whose "sky" holds them). FileError naming the file and the field otherwise.
+glsl::AtmosphereParameters readAtmosphereFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw FileError(path, "cannot be read");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(path, std::string("not valid JSON: ") + e.what());
+  }
+  if (j.is_object() && j.contains("sky")) return scene::atmosphereFromJson(j["sky"], path, "sky.");
+  return scene::atmosphereFromJson(j, path, "");
+}
+
 int runBake(int argc, char** argv) {
   cxxopts::Options options("cloudlut bake", "Compute look-up tables into a LUT directory.");
   options.add_options()
     ("out", "output directory", cxxopts::value<std::string>()->default_value("out/luts"))
-    ("tables", "tables to bake: optical-depth, all (comma-separated)", cxxopts::value<std::string>()->default_value("all"))
+    ("tables", "tables to bake: optical-depth, single, multiple, atmosphere, all (= the cloud tables; comma-separated)", cxxopts::value<std::string>()->default_value("all"))
     ("res-od", "optical-depth table dimensions phi_s,theta_s,phi_v,theta_v", cxxopts::value<std::string>()->default_value(dimsText(defaults::kOpticalDepthDims)))
     ("res-sc", "scattering table dimensions theta_s,phi_v,theta_v,density", cxxopts::value<std::string>()->default_value(dimsText(defaults::kScatteringDims)))
     ("densities", "density slices as log2 rho: a range a:b or an evenly spaced list a,b,c (sets the 4th dimension)",
@@ -119,6 +136,7 @@ int runBake(int argc, char** argv) {
     ("extinction", "extinction coefficient beta, 1/m", cxxopts::value<double>()->default_value(defaultText(defaults::kExtinctionPerMetre)))
     ("radius", "particle radius R, m", cxxopts::value<double>()->default_value(defaultText(defaults::kParticleRadiusMetres)))
     ("threads", "worker threads (0 = all cores)", cxxopts::value<int>()->default_value("0"))
+    ("atmosphere", "--tables atmosphere: a JSON file of the atmosphere's parameters (a scene's \"sky\" object; docs/SCENE_FORMAT.md)", cxxopts::value<std::string>())
     ("quiet", "no progress output");
   addPhaseOptions(options, false);
   cxxopts::ParseResult args;
@@ -131,6 +149,11 @@ int runBake(int argc, char** argv) {
   plan.opticalDepth = tables.count("optical-depth") > 0;
   plan.sc.single = tables.count("single") > 0;
   plan.sc.multiple = tables.count("multiple") > 0;
+  plan.atmosphere = tables.count("atmosphere") > 0;
+  if (args.count("atmosphere")) {
+    if (!plan.atmosphere) throw UsageError("--atmosphere needs --tables atmosphere");
+    plan.atmosphereParameters = readAtmosphereFile(args["atmosphere"].as<std::string>());
+  }
   plan.od.dims = parseDims(args["res-od"].as<std::string>(), "res-od");
   const auto model = parseDensityModel(args["density-model"].as<std::string>());
   if (!model) throw UsageError("--density-model: unknown model '" + args["density-model"].as<std::string>() + "' (noise, threshold, pyroclastic, radial, sphere)");

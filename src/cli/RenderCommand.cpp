@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 
+#include "cli/AtmosphereSetup.h"
 #include "cli/Command.h"
 #include "cli/Options.h"
 #include "cli/SceneOptions.h"
@@ -68,7 +69,8 @@ int runRender(int argc, char** argv) {
     ("out", "output image: FILE.png (tone-mapped sRGB) or FILE.exr (linear RGB, A = 1 - transmittance, Z)", cxxopts::value<std::string>())
     ("width", "image width in pixels", cxxopts::value<long long>()->default_value("1280"))
     ("height", "image height in pixels", cxxopts::value<long long>()->default_value("720"))
-    ("exposure", "PNG tone mapping: 1 - exp(-exposure * radiance)", cxxopts::value<double>()->default_value("5"))
+    ("exposure", "PNG tone mapping: 1 - exp(-exposure * radiance) under a uniform sky; under the atmosphere the filmic curve's exposure (default: automatic, from the log-average luminance)", cxxopts::value<double>()->default_value("5"))
+    ("sky-orders", "the atmosphere's scattering orders: 1 (single scattering only) or all", cxxopts::value<std::string>()->default_value("all"))
     ("terms", "lighting terms: single, multiple, ambient, all (comma-separated)", cxxopts::value<std::string>()->default_value("all"))
     ("quiet", "print nothing on success");
   addViewOptions(options);      // camera and light: cli/SceneOptions.h
@@ -95,6 +97,9 @@ int runRender(int argc, char** argv) {
   const double exposure = requirePositive(args["exposure"].as<double>(), "exposure");
 
   render::RenderSettings settings;
+  const std::string skyOrders = args["sky-orders"].as<std::string>();
+  if (skyOrders != "1" && skyOrders != "all") throw UsageError("--sky-orders: expected 1 or all, got '" + skyOrders + "'");
+  settings.skyOrders = skyOrders == "1" ? 1 : 0;
   settings.width = static_cast<int>(width);
   settings.height = static_cast<int>(height);
   settings.terms = parseTermList(args["terms"].as<std::string>());
@@ -138,6 +143,7 @@ int runRender(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
   render::Renderer renderer(*context, luts);
+  setUpAtmosphere(renderer, luts, settings.view.lighting);
   const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const scene::Camera start = settings.view.camera;
   for (int frame = 0; frame < frames; ++frame) {
@@ -153,7 +159,9 @@ int runRender(int argc, char** argv) {
     if (const std::size_t bad = image.nonFiniteCount())
       throw std::runtime_error("the render holds " + std::to_string(bad) + " non-finite values (tables out of range?)");
     const fs::path file = frames > 1 || path ? framePath(out, frame) : out;
-    if (ext == ".png") render::writePng(image, file, settings.view.lighting.skyColor, static_cast<float>(exposure));
+    if (ext == ".png" && settings.view.lighting.atmosphere)
+      render::writeFilmicPng(image, file, args.count("exposure") ? std::optional<float>(static_cast<float>(exposure)) : std::nullopt);
+    else if (ext == ".png") render::writePng(image, file, settings.view.lighting.skyColor, static_cast<float>(exposure));
     else render::writeExr(image, file);
     if (!args.count("quiet")) {
       std::printf("wrote %s: %dx%d, %zu particles, %s blending, generate %.1f ms, occlusion %.1f ms, render %.1f ms "

@@ -35,6 +35,38 @@ void writePng(const Image& image, const std::filesystem::path& path, const glm::
   io::writePng(path, image.width, image.height, rgb);
 }
 
+float filmicToneCurve(float x) {
+  x = std::max(x, 0.0f);
+  return std::clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+}
+
+float automaticExposure(const Image& image) {
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const float* p = &image.rgba[4 * i];
+    const double y = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+    if (!std::isfinite(y)) continue;
+    sum += std::log(1e-6 + std::max(y, 0.0));
+    ++n;
+  }
+  return n == 0 ? 1.0f : static_cast<float>(0.18 / std::exp(sum / static_cast<double>(n)));
+}
+
+void writeFilmicPng(const Image& image, const std::filesystem::path& path, std::optional<float> exposure) {
+  const float k = exposure ? *exposure : automaticExposure(image);
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  std::vector<std::uint8_t> rgb(pixels * 3);
+  for (std::size_t i = 0; i < pixels; ++i)
+    for (std::size_t c = 0; c < 3; ++c) {
+      float v = image.rgba[4 * i + c] * k;
+      if (!std::isfinite(v)) v = 0.0f;
+      rgb[3 * i + c] = static_cast<std::uint8_t>(std::lround(255.0f * linearToSrgb(filmicToneCurve(v))));
+    }
+  io::writePng(path, image.width, image.height, rgb);
+}
+
 void writeExr(const Image& image, const std::filesystem::path& path) {
   io::ExrImage out(image.width, image.height);
   const std::size_t pixels = out.pixelCount();

@@ -4,6 +4,7 @@
 // directory that does not exist or cannot be written raises UsageError.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 
 #include <glm/vec3.hpp>
 
@@ -16,6 +17,19 @@ namespace cloudlut::render {
 // per channel, then sRGB-encoded. Opaque (RGB, no alpha).
 void writePng(const Image& image, const std::filesystem::path& path, const glm::vec3& background,
               float exposure);
+
+// 8-bit sRGB PNG of an image already composited under the atmosphere (render/SkyPass.h; its RGB
+// is the whole pixel's radiance): c · exposure mapped by the filmic curve filmicToneCurve, then
+// sRGB-encoded. Without an exposure, automaticExposure(image).
+void writeFilmicPng(const Image& image, const std::filesystem::path& path, std::optional<float> exposure);
+
+// The ACES filmic fit of Narkowicz (2015), x(2.51x + 0.03) / (x(2.43x + 0.59) + 0.14), clamped to [0, 1].
+float filmicToneCurve(float x);
+
+// 0.18 over the log-average luminance of the image (Reinhard et al. 2002, eq. 1: exp of the
+// mean of log(δ + Y), δ = 1e-6, Y the Rec. 709 luminance), so that the average scene maps to
+// middle grey.
+float automaticExposure(const Image& image);
 
 // OpenEXR, FLOAT channels: R, G, B linear radiance (not premultiplied further: it is the light
 // the particles send toward the camera), A = 1 − transmittance, Z = distance to the closest

@@ -59,6 +59,9 @@ struct RenderSettings {
   long double volumePoolBytes = 0;  // volume: budget of one tile's node pool (0: the default; VolumeResolve.h)
   LightingModel lighting = LightingModel::Cloud;
   SunlightModel sunlight = SunlightModel::Volume;
+  // With view.lighting.atmosphere: the sky's scattering orders, 1 = single scattering only
+  // (--sky-orders 1), 0 = all of them.
+  int skyOrders = 0;
 };
 
 // The sunlight each lighting model takes unless told otherwise.
@@ -94,6 +97,7 @@ struct RenderStats {
   double resolveSeconds = 0;    // of which the volume resolves
   double upscaleSeconds = 0;    // bilateral upscale (GPU), glFinish
   double readbackSeconds = 0;   // the final image to the CPU
+  double skySeconds = 0;        // the atmosphere's sky pass (render/SkyPass.h), when the sky is the atmosphere
   std::size_t particles = 0;         // drawn
   std::size_t validCells = 0;        // cloudscapes: non-empty cells in the frustum
   std::size_t fragments = 0;         // volume: fragments produced

@@ -15,6 +15,7 @@
 #include "render/LightOcclusion.h"
 #include "render/ParticlePass.h"
 #include "render/ParticleUpload.h"
+#include "render/SkyPass.h"
 #include "render/Stopwatch.h"
 #include "render/SunVolume.h"
 #include "render/SunVolumeGrid.h"
@@ -48,6 +49,7 @@ struct Renderer::Impl {
   ParticlePass particles;
   VolumeResolve volume;
   Upscale upscale;
+  std::unique_ptr<SkyPass> sky;  // issue 13: made when a frame first uses the atmosphere
 
   Impl(GlContext& c, const io::LutSet& luts)
       : context(c),
@@ -71,6 +73,8 @@ struct Renderer::Impl {
       // the context is gone; the members' deletions go nowhere
     }
   }
+
+  void validateContext() { context.makeCurrent(); }
 
   void validate(const RenderSettings& s) {
     checkImageSize(s.width, s.height);
@@ -164,6 +168,12 @@ struct Renderer::Impl {
     const Stopwatch readClock;
     Image image = s.downscale > 1 ? upscale.readBack() : target.readBack();
     if (stats) stats->readbackSeconds = readClock.seconds();
+    // --- atmosphere (issue 13, render/SkyPass.h): the sky, the ground, aerial perspective
+    if (s.view.lighting.atmosphere) {
+      const Stopwatch skyClock;
+      skyPass().composite(image, s, sunVolume, sun);
+      if (stats) stats->skySeconds = skyClock.seconds();
+    }
     return image;
   }
 
@@ -181,7 +191,9 @@ struct Renderer::Impl {
     const float farPlane = upload.upload(list, order, eye, glm::normalize(s.view.lighting.sunDirection));
     if (stats) stats->uploadSeconds = clock.seconds();
     const bool sun = illuminate(list.size(), needsSunVolume(s) ? sunGridFor(list, s) : SunVolumeGrid{}, s, stats);
-    return draw(list.size(), false, farPlane, s, sun, stats);
+    float altitude = 0.0f;  // of the particles' mean centre, for the atmosphere's cloud lighting
+    for (const scene::Particle& p : list) altitude += p.center.y / static_cast<float>(list.size());
+    return draw(list.size(), false, farPlane, litByAtmosphere(s, altitude), sun, stats);
   }
 
   Image renderCloudscape(const scene::CloudType& cloud, const scene::QualityPreset& q, const RenderSettings& s,
@@ -196,7 +208,24 @@ struct Renderer::Impl {
       stats->validCells = g.cells;
     }
     const bool sun = illuminate(g.count, needsSunVolume(s) ? sunGridFor(cloud, q, s) : SunVolumeGrid{}, s, stats);
-    return draw(g.count, alpha, g.farPlane, s, sun, stats);
+    return draw(g.count, alpha, g.farPlane, litByAtmosphere(s, 0.5f * (cloud.cloudBase + cloud.cloudTop)), sun, stats);
+  }
+
+  // --- atmosphere (issue 13): the sky pass, and the settings whose sun colour and ambient the
+  // atmosphere sets for clouds at `altitude` (SkyPass::cloudLighting); unchanged without it.
+  SkyPass& skyPass() {
+    if (!sky) sky = std::make_unique<SkyPass>(gl, context);
+    return *sky;
+  }
+  RenderSettings litByAtmosphere(const RenderSettings& s, float altitude) {
+    if (!s.view.lighting.atmosphere) return s;
+    RenderSettings lit = s;
+    if (!sky || !sky->hasTables()) {  // no tables given: the uniform sky (Renderer.h)
+      lit.view.lighting.atmosphere = false;
+      return lit;
+    }
+    lit.view.lighting = sky->cloudLighting(s.view.lighting, altitude);
+    return lit;
   }
 
   // The sun volume's grid around explicit particles: their bounding spheres, columns a quarter of
@@ -259,6 +288,12 @@ struct Renderer::Impl {
 Renderer::Renderer(GlContext& context, const io::LutSet& luts) : impl_(std::make_unique<Impl>(context, luts)) {}
 
 Renderer::~Renderer() = default;
+
+void Renderer::setAtmosphereTables(const glsl::AtmosphereParameters& atmosphere, const Table4D& transmittance,
+                                   const Table4D& multipleScattering, const Table4D& irradiance) {
+  impl_->validateContext();
+  impl_->skyPass().setTables(atmosphere, transmittance, multipleScattering, irradiance);
+}
 
 Image Renderer::render(const std::vector<scene::Particle>& particles, const RenderSettings& settings,
                        RenderStats* stats) {

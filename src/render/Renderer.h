@@ -52,6 +52,12 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
+  // The atmosphere's tables (bake/AtmosphereBaker.h) for frames whose sky is the atmosphere
+  // (scene::Lighting::atmosphere): render/SkyPass.h composites them under it. Until they are
+  // given, such frames render under the uniform sky of the lighting's skyColor.
+  void setAtmosphereTables(const glsl::AtmosphereParameters& atmosphere, const Table4D& transmittance,
+                           const Table4D& multipleScattering, const Table4D& irradiance);
+
   Image render(const std::vector<scene::Particle>& particles, const RenderSettings& settings,
                RenderStats* stats = nullptr);
 

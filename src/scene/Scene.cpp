@@ -1,5 +1,7 @@
 #include "scene/Scene.h"
 
+#include "scene/AtmosphereJson.h"
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -43,6 +45,7 @@ namespace {
 class Validator {
  public:
   explicit Validator(std::string source) : source_(std::move(source)) {}
+  const std::string& source() const { return source_; }
 
   [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
     throw FileError(source_, field + ": " + problem);
@@ -151,6 +154,11 @@ Particle parseParticle(const Validator& check, const nlohmann::json& j, const st
 
 }  // namespace
 
+glm::vec3 sunFromElevationAzimuth(float elevationDeg, float azimuthDeg) {
+  const float e = glm::radians(elevationDeg), a = glm::radians(azimuthDeg);
+  return {std::cos(e) * std::sin(a), std::sin(e), -std::cos(e) * std::cos(a)};
+}
+
 Scene parseScene(const nlohmann::json& document, const std::string& source) {
   const Validator check(source);
   if (!document.is_object()) check.fail("(document)", "expected a JSON object with a \"particles\" array");
@@ -174,14 +182,36 @@ Scene parseScene(const nlohmann::json& document, const std::string& source) {
   if (document.contains("sun")) {
     const nlohmann::json& s = document["sun"];
     check.requireObject(s, "sun");
-    check.onlyKeys(s, "sun", {"direction", "color"});
+    check.onlyKeys(s, "sun", {"direction", "elevation_deg", "azimuth_deg", "color"});
     if (s.contains("direction")) scene.view.sunDirection = check.nonZeroVec3(s["direction"], "sun.direction");
+    if (s.contains("elevation_deg") || s.contains("azimuth_deg")) {
+      if (s.contains("direction")) check.fail("sun", "give either direction or elevation_deg and azimuth_deg, not both");
+      if (!s.contains("elevation_deg")) check.fail("sun.elevation_deg", "missing (azimuth_deg needs it)");
+      const float e = check.finiteNumber(s["elevation_deg"], "sun.elevation_deg", "expected degrees in [-90, 90]");
+      if (!(e >= -90.0f && e <= 90.0f)) check.fail("sun.elevation_deg", "expected degrees in [-90, 90]");
+      const float az = s.contains("azimuth_deg")
+                           ? check.finiteNumber(s["azimuth_deg"], "sun.azimuth_deg", "expected a number of degrees")
+                           : 0.0f;
+      scene.view.sunDirection = sunFromElevationAzimuth(e, az);
+    }
     if (s.contains("color")) scene.view.sunColor = check.color(s["color"], "sun.color");
   }
   if (document.contains("sky")) {
     const nlohmann::json& s = document["sky"];
     check.requireObject(s, "sky");
-    check.onlyKeys(s, "sky", {"color"});
+    if (s.contains("model") && !(s["model"] == "atmosphere" || s["model"] == "uniform"))
+      check.fail("sky.model", "expected \"atmosphere\" or \"uniform\"");
+    const bool atmosphere = s.value("model", std::string("uniform")) == "atmosphere";
+    if (atmosphere) {
+      check.onlyKeys(s, "sky", {"model", "color", "bottom_radius_m", "top_radius_m", "rayleigh_scattering_per_m",
+                                "rayleigh_scale_height_m", "mie_scattering_per_m", "mie_absorption_per_m",
+                                "mie_scale_height_m", "mie_g", "ozone_absorption_per_m", "ozone_bottom_m",
+                                "ozone_peak_m", "ozone_top_m", "ground_albedo"});
+      scene.view.atmosphereParameters = atmosphereFromJson(s, check.source(), "sky.");
+    } else {
+      check.onlyKeys(s, "sky", {"model", "color"});
+    }
+    if (s.contains("model")) scene.view.atmosphere = atmosphere;
     if (s.contains("color")) scene.view.skyColor = check.color(s["color"], "sky.color");
   }
   if (!document.contains("particles")) check.fail("particles", "missing (expected an array of particles)");
@@ -279,6 +309,11 @@ View resolveView(const Scene& scene, const ViewSettings& commandLine) {
   view.lighting.sunDirection = glm::normalize(sun);
   view.lighting.sunColor = pick(commandLine.sunColor, f.sunColor, view.lighting.sunColor);
   view.lighting.skyColor = pick(commandLine.skyColor, f.skyColor, view.lighting.skyColor);
+  view.lighting.atmosphere = pick(commandLine.atmosphere, f.atmosphere, false);
+  view.lighting.atmosphereParameters =
+      pick(commandLine.atmosphereParameters, f.atmosphereParameters, glsl::defaultAtmosphere());
+  if (view.lighting.atmosphere && !(eye.y >= 0.0))
+    throw UsageError("camera: the eye lies underground (y < 0) under the atmosphere's sky (camera.eye or --eye)");
   return view;
 }
 

@@ -18,6 +18,8 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/Glsl.h"
+
 namespace cloudlut::scene {
 
 // One particle: the unit sphere mapped to the world by x = center + R · diag(radii) · p.
@@ -43,12 +45,20 @@ struct ViewSettings {
   std::optional<float> fovDeg;                   // vertical field of view, degrees
   std::optional<glm::vec3> sunDirection;         // toward the sun (normalised on use)
   std::optional<glm::vec3> sunColor, skyColor;
+  // "sky": {"model": "atmosphere", ...}: the precomputed atmosphere and its parameters
+  // (scene/AtmosphereJson.h) instead of the uniform sky colour.
+  std::optional<bool> atmosphere;
+  std::optional<glsl::AtmosphereParameters> atmosphereParameters;
 };
 
 struct Scene {
   std::vector<Particle> particles;
   ViewSettings view;
 };
+
+// The unit direction toward a sun at `elevationDeg` above the horizon and `azimuthDeg` from −z
+// (the default view direction) toward +x, degrees (docs/SCENE_FORMAT.md).
+glm::vec3 sunFromElevationAzimuth(float elevationDeg, float azimuthDeg);
 
 // Parses and validates a scene document; `source` names it in error messages.
 Scene parseScene(const nlohmann::json& document, const std::string& source);
@@ -67,6 +77,10 @@ struct Lighting {
   glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};  // unit, toward the sun
   glm::vec3 sunColor{1.0f};                  // sun irradiance per channel
   glm::vec3 skyColor{0.05f, 0.08f, 0.15f};   // sky radiance per channel (ambient and background)
+  // The sky model: a uniform sky of skyColor, or the atmosphere (then the sun colour is the
+  // sunlight above the atmosphere and skyColor is not used; render/SkyPass.h).
+  bool atmosphere = false;
+  glsl::AtmosphereParameters atmosphereParameters = glsl::defaultAtmosphere();
 };
 
 struct View {

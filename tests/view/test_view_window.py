@@ -129,8 +129,18 @@ def main():
         luts = os.path.join(work, "luts")
         subprocess.run([exe, "bake", "--out", luts, "--res-od", "16,8,16,8", "--res-sc", "8,16,4,8",
                         "--orders", "4", "--format", "bin"], check=True, stdout=subprocess.DEVNULL)
+        # The viewer draws the uniform sky only (the atmosphere of issue 13 is render's): both
+        # sides take the default cloudscape under its uniform sky.
+        preset = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "presets",
+                              "fair_weather_cumulus.json")
+        with open(preset) as f:
+            scene = json.load(f)
+        scene["sky"] = {"model": "uniform", "color": [0.05, 0.08, 0.15]}
+        scene_file = os.path.join(work, "uniform_sky.json")
+        with open(scene_file, "w") as f:
+            json.dump(scene, f)
         view_args = [exe, "view", "--luts", luts, "--width", str(WIDTH), "--height", str(HEIGHT),
-                     "--quality", "low"]
+                     "--quality", "low", "--scene", scene_file]
 
         # No display: exit 2, one line naming the problem.
         env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
@@ -202,7 +212,7 @@ def main():
 
         # The first recorded camera, rendered offline, is the first screenshot's picture.
         frames = os.path.join(work, "offline.png")
-        subprocess.run([exe, "render", "--luts", luts, "--path", record, "--frames", "1", "--out", frames,
+        subprocess.run([exe, "render", "--luts", luts, "--scene", scene_file, "--path", record, "--frames", "1", "--out", frames,
                         "--width", str(WIDTH), "--height", str(HEIGHT), "--quality", "low", "--quiet"], check=True)
         _, _, offline = read_png(os.path.join(work, "offline_0000.png"))
         lum2 = luminance(offline)

@@ -1,0 +1,39 @@
+#pragma once
+// The atmosphere's sun-independent tables (lut_formats/glsl/cloudlut_atmosphere_tables.glsl):
+// transmittance T(r, mu) 256 × 128, multiple scattering Ψms(r, mu_s) 32 × 32 and sky irradiance
+// E(r, mu_s) 64 × 16, RGB, each a Table4D whose axes 2 and 3 have one node. Each node is the
+// shared GLSL's integral (opticalDepthToTop, multipleScatteringNode, skyIrradianceNode); the
+// multiple-scattering table needs the transmittance table and the irradiance table both.
+#include "core/Glsl.h"
+#include "core/Progress.h"
+#include "core/Table4D.h"
+
+namespace cloudlut::bake {
+
+struct AtmosphereBakeSettings {
+  int transmittancePanels = 32;  // two-point Gauss–Legendre panels per ray (64 extinction samples)
+  int multipleDirections = 8;    // 8 × 8 = 64 directions per Ψms node (Hillaire 2020 uses 64)
+  int multipleSteps = 20;        // pieces per direction
+  int irradianceDirections = 8;  // 8 × 8 directions over a mirrored half hemisphere
+  int irradianceSteps = 24;      // pieces per direction
+  // Orders in the irradiance table: 1 = single scattering only, anything else = all (Ψms).
+  int orders = 0;
+};
+
+struct AtmosphereTables {
+  Table4D transmittance;        // "atmosphere_transmittance"
+  Table4D multipleScattering;   // "atmosphere_multiple_scattering"
+  Table4D irradiance;           // "atmosphere_irradiance"
+};
+
+// Bakes the three tables in parallel over rows (oneTBB): the same output for any thread count.
+// Each table's parameters hold the atmosphere (scene/AtmosphereJson.h) and the settings.
+AtmosphereTables bakeAtmosphere(const glsl::AtmosphereParameters& atmosphere, const AtmosphereBakeSettings& settings = {},
+                                const ProgressFn& progress = {});
+
+// The shared GLSL's view of a table baked (or read) as above: its texels, width and height.
+// The table must outlive the returned value; throws std::invalid_argument unless the table has
+// 3 channels and one node on axes 2 and 3.
+glsl::AtmosphereTexture atmosphereTexture(const Table4D& table);
+
+}  // namespace cloudlut::bake

@@ -1,0 +1,60 @@
+// sky_composite.comp.glsl — the frame under the sky (render/SkyPass.h). Per pixel, with the
+// clouds' premultiplied radiance Lc, opacity A and distance d from the particle passes:
+//   background Lb = the sky-view table's in-scattering along the ray, plus the sun's disc
+//                   (sunDiscRadiance) through T to the top, or, where the ray meets the ground,
+//                   the ground's radiance (groundRadiance, sunlight through the clouds' shadow
+//                   exp(−τ) of the sun volume) through T to the ground;
+//   L = T(d) Lc + A S(d) + (1 − A) Lb   (S, T from the aerial-perspective volume; seed §5.6).
+// Writes L into the colour buffer in place (A kept). Needs sky_uniforms.glsl and the sun volume's
+// sampling code.
+layout(local_size_x = 64) in;
+layout(std430, binding = 7) buffer Colour { vec4 colour[]; };
+layout(std430, binding = 8) readonly buffer Distance { float distanceTo[]; };
+uniform sampler3D uSkyView;     // depth 1
+uniform sampler3D uAerialInScatter;
+uniform sampler3D uAerialTransmittance;
+uniform float uAerialMax;
+uniform ivec2 uSize;
+uniform int uFirstRow;
+uniform float uNoDistance;
+
+void main() {
+  int x = int(gl_GlobalInvocationID.x), row = int(gl_GlobalInvocationID.y);
+  int y = uFirstRow + row;
+  if (x >= uSize.x || y >= uSize.y) return;
+  int i = row * uSize.x + x;
+  vec2 uv = (vec2(x, y) + 0.5) / vec2(uSize);
+  vec3 d = screenRay(uv);
+  float r = length(uEyePlanet), mu = dot(uEyePlanet, d) / r;
+  bool ground = rayHitsGround(uAtmosphere, r, mu);
+  vec2 skyUv = skyViewUv(d);
+  vec2 viewSize = vec2(textureSize(uSkyView, 0).xy);
+  vec3 inScatter = texture(uSkyView, vec3(lutTexCoord(skyUv.x, viewSize.x), lutTexCoord(skyUv.y, viewSize.y), 0.5)).rgb;
+  vec3 background;
+  if (ground) {
+    float t = distanceToGround(uAtmosphere, r, mu);
+    vec3 g = uEyePlanet + t * d;
+    float shadow = exp(-sunOpticalDepth(uEyeWorld + t * d));
+    vec3 Lg = groundRadiance(uAtmosphere, uTransmittance, uIrradiance, dot(normalize(g), uSun), shadow);
+    background = inScatter + transmittanceAlongRay(uAtmosphere, uTransmittance, r, mu, t, true) * Lg;
+  } else {
+    background = inScatter + transmittanceToTop(uAtmosphere, uTransmittance, r, mu) * sunDiscRadiance(dot(d, uSun));
+  }
+  vec4 c = colour[i];
+  float dist = distanceTo[i];
+  vec3 L = background;
+  if (c.a > 0.0 && dist < uNoDistance) {
+    float w = sqrt(clamp(dist / uAerialMax, 0.0, 1.0)) * float(AERIAL_SLICES) - 1.0;  // slice coordinate
+    vec3 tc = vec3(uv, (max(w, 0.0) + 0.5) / float(AERIAL_SLICES));
+    vec3 S = texture(uAerialInScatter, tc).rgb, T = texture(uAerialTransmittance, tc).rgb;
+    if (w < 0.0) {  // closer than the first slice: scale toward the camera
+      float f = clamp(w + 1.0, 0.0, 1.0);
+      S *= f;
+      T = mix(vec3(1.0), T, f);
+    }
+    L = T * c.rgb + c.a * S + (1.0 - c.a) * background;
+  } else if (c.a > 0.0) {
+    L = c.rgb + (1.0 - c.a) * background;
+  }
+  colour[i] = vec4(L, c.a);
+}
