@@ -45,7 +45,7 @@ struct CloudType {
   float visibility = 40000.0f;   // m, far plane: no particle beyond it
   float fadeFraction = 0.25f;    // share of a ring over which it cross-fades with the next
   float heightProfile = 1.0f;    // column height = amount^p: p < 1 flat-topped sheets, 1 domed heaps
-  float topTaper = 0.45f;        // the top particle of a column is this much smaller than the bottom one
+  float topTaper = 0.3f;         // the top particle of a column is this much smaller than the bottom one
   float edgeDensity = 0.35f;     // density at a cloud's edge relative to its core
   int seed = 1;
 };
