@@ -9,7 +9,6 @@
 #include "core/Errors.h"
 #include "core/Glsl.h"
 #include "core/Phase.h"
-#include "scene/CloudscapeGrid.h"
 
 using namespace cloudlut;
 
@@ -27,12 +26,6 @@ TEST_CASE("defaults are the seed's", "[defaults]") {
   CHECK(defaults::kScatteringOrders == 18);
   CHECK(defaults::kFirstPhase == Phase{PhaseKind::CornetteShanks, 0.9f});
   CHECK(defaults::kLaterPhase == Phase{PhaseKind::CornetteShanks, 0.7f});
-}
-
-TEST_CASE("GLSL constants equal the defaults they repeat", "[defaults]") {
-  // The cloudscape generator's reference radius (src/scene/glsl/cloudscape_grid.glsl) scales a
-  // world particle's density by r / R; it must be the tables' R.
-  CHECK(scene::grid::CG_REFERENCE_RADIUS == static_cast<float>(defaults::kParticleRadiusMetres));
 }
 
 TEST_CASE("Phase kinds select the GLSL's phase functions", "[defaults][phase]") {

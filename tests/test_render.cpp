@@ -126,7 +126,13 @@ TEST_CASE("render: one particle's pixels match core/TableLookup within 1%", "[re
   Particle ellipsoid = sphere;
   ellipsoid.radii = {2.0f, 1.1f, 1.4f};
   ellipsoid.density = 0.6f;
-  const Case cases[] = {{"rotated sphere, rho 0.25", sphere}, {"rotated ellipsoid, rho 0.6", ellipsoid}};
+  // The reference particle turned inside the ellipsoid (x = c + R·diag(r)·Q·p, the cloudscape's
+  // per-particle rotation): the CPU lookup maps through Particle::toParticle as the path tracer does.
+  Particle turned = ellipsoid;
+  turned.noiseRotation = glm::normalize(glm::quat(0.62f, -0.31f, 0.55f, 0.47f));
+  const Case cases[] = {{"rotated sphere, rho 0.25", sphere},
+                        {"rotated ellipsoid, rho 0.6", ellipsoid},
+                        {"ellipsoid with the reference particle turned, rho 0.6", turned}};
 
   // Seed lighting (§4.4): multiple at ρ, crease ambient. Cloud lighting, for a particle alone:
   // no shadow from the sun volume (its own chord is taken out exactly), multiple at the ray's

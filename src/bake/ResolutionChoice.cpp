@@ -22,7 +22,7 @@
 
 namespace cloudlut::bake {
 
-SceneNeeds readSceneNeeds(const std::string& fileOrPreset, const std::string& quality) {
+SceneNeeds readSceneNeeds(const std::string& fileOrPreset, const std::string& quality, double radiusMetres) {
   SceneNeeds needs;
   needs.source = fileOrPreset;
   bool particleScene = false;
@@ -44,7 +44,8 @@ SceneNeeds readSceneNeeds(const std::string& fileOrPreset, const std::string& qu
     }
   } else {
     const scene::CloudscapeScene scene = scene::loadCloudscape(fileOrPreset, "--for-scene");
-    const glm::vec2 range = scene::cloudscapeDensityRange(scene.cloud, scene::qualityPreset(quality));
+    const glm::vec2 range = scene::cloudscapeDensityRange(scene.cloud, scene::qualityPreset(quality),
+                                                               static_cast<float>(radiusMetres));
     needs.kind = "cloudscape";
     needs.rhoMin = range.x;
     needs.rhoMax = range.y;

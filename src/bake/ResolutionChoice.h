@@ -19,8 +19,9 @@ struct SceneNeeds {
 };
 
 // Reads a particle scene (a JSON file with "particles") or a cloudscape (preset name or file;
-// `quality` = low, medium or high). FileError / UsageError as the renderer reports them.
-SceneNeeds readSceneNeeds(const std::string& fileOrPreset, const std::string& quality);
+// `quality` = low, medium or high; a cloudscape's densities depend on the radius R, m, of the
+// reference particle the tables are baked for). FileError / UsageError as the renderer reports them.
+SceneNeeds readSceneNeeds(const std::string& fileOrPreset, const std::string& quality, double radiusMetres);
 
 // Density slices s = log2 ρ (integers, evenly spaced by 1) that cover the scene: from one
 // below the smallest ρ (single scattering is looked up at ρ times the ray's mean density) to

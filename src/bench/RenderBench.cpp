@@ -177,6 +177,15 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
         report.add(BenchRow{"render", method, stage, variant, r, "", particles, 0, seconds, -1, -1, -1, -1, n});
       };
       row("generation", st.generateSeconds, res, note);
+      if (blend == render::BlendMode::Alpha) {
+        // The CPU generation of every particle around the camera (render --dump-particles).
+        const auto c0 = std::chrono::steady_clock::now();
+        const scene::CpuGeneration all = scene::generateCloudscapeAround(scene.cloud, q, view.camera.eye);
+        const double cpu = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+        report.add(BenchRow{"render", "cpu", "generation (all around the camera)", variant, "-", "",
+                            static_cast<int>(all.particles.size()), 0, cpu, -1, -1, -1, -1,
+                            "scene::generateCloudscapeAround, one thread, no frustum culling"});
+      }
       row("sunlight", st.occlusionSeconds, res, "sun volume (cloud lighting, docs/LIGHTING.md)");
       row("shading+blending", st.renderSeconds, res,
           blend == render::BlendMode::Volume ? "draw + resolve (resolve " +

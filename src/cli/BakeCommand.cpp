@@ -178,7 +178,8 @@ int runBake(int argc, char** argv) {
   if (args.count("for-scene")) {
     plan.tolerance = args["tolerance"].as<double>();
     if (!(plan.tolerance > 0.0 && plan.tolerance < 1.0)) throw UsageError("--tolerance must lie in (0, 1)");
-    plan.forScene = bake::readSceneNeeds(args["for-scene"].as<std::string>(), args["quality"].as<std::string>());
+    plan.forScene = bake::readSceneNeeds(args["for-scene"].as<std::string>(), args["quality"].as<std::string>(),
+                                           args["radius"].as<double>());
     if (plan.scattering()) {
       const auto s = bake::densitySlicesFor(*plan.forScene);
       plan.sc.sMin = s[0];

@@ -2,7 +2,8 @@
 // (--scene PRESET|FILE; the default cloudscape without either) from a LUT directory with OpenGL
 // 4.5 (headless, OSMesa) into a PNG (tone-mapped sRGB) or an EXR (linear radiance, alpha,
 // distance); --frames N writes a numbered sequence along a slow camera path, --path FILE the frames
-// of a recorded flight (scene/CameraPath.h).
+// of a recorded flight (scene/CameraPath.h); --dump-particles FILE writes a cloudscape's particles
+// around the camera as a particle scene (scene/SceneWriter.h).
 // Everything is validated before the tables are read or anything is rendered; the image is
 // written through a temporary file and a rename.
 #include <algorithm>
@@ -20,11 +21,13 @@
 #include "cli/SceneOptions.h"
 #include "core/Errors.h"
 #include "io/LutIo.h"
+#include "io/LutSetMedium.h"
 #include "render/GlContext.h"
 #include "render/ImageWriters.h"
 #include "render/Renderer.h"
 #include "scene/CameraPath.h"
 #include "scene/Scene.h"
+#include "scene/SceneWriter.h"
 
 namespace cloudlut::cli {
 namespace {
@@ -53,7 +56,7 @@ int runRender(int argc, char** argv) {
   options.add_options()
     ("luts", "LUT directory (optical_depth, single_scattering, multiple_scattering)", cxxopts::value<std::string>())
     ("particles", "scene file (JSON, docs/SCENE_FORMAT.md)", cxxopts::value<std::string>())
-    ("scene", "cloudscape preset (fair_weather_cumulus, stratocumulus, overcast, cumulus_congestus) or file; default fair_weather_cumulus", cxxopts::value<std::string>())
+    ("scene", "cloudscape preset (fair_weather_cumulus, stratocumulus, overcast, cumulus_congestus, towering_cumulus_sunset) or file; default fair_weather_cumulus", cxxopts::value<std::string>())
     ("quality", "cloudscape grid: low 104^2x4x2, medium 136^2x4x4, high 184^2x4x6", cxxopts::value<std::string>()->default_value("medium"))
     ("blend", "alpha or volume (default: volume for cloudscapes, alpha for --particles)", cxxopts::value<std::string>())
     ("downscale", "render the particles at 1/N resolution (1, 2, 4) and upscale (bilateral)", cxxopts::value<int>()->default_value("1"))
@@ -72,6 +75,7 @@ int runRender(int argc, char** argv) {
     ("exposure", "PNG tone mapping: 1 - exp(-exposure * radiance) under a uniform sky; under the atmosphere the filmic curve's exposure (default: automatic, from the log-average luminance)", cxxopts::value<double>()->default_value("5"))
     ("sky-orders", "the atmosphere's scattering orders: 1 (single scattering only) or all", cxxopts::value<std::string>()->default_value("all"))
     ("terms", "lighting terms: single, multiple, ambient, all (comma-separated)", cxxopts::value<std::string>()->default_value("all"))
+    ("dump-particles", "cloudscapes: write every particle the grid generates around the camera (before frustum culling, level-of-detail fade in the density) as a particle scene FILE.json; --out optional", cxxopts::value<std::string>())
     ("quiet", "print nothing on success");
   addViewOptions(options);      // camera and light: cli/SceneOptions.h
   addRayMarchOptions(options);  // --method raymarch: cli/SceneOptions.h
@@ -84,11 +88,12 @@ int runRender(int argc, char** argv) {
     if (args.count(option))
       throw UsageError(std::string("--") + option + " applies to --method raymarch only (--method particles takes "
                        "the medium and phase functions from the LUT set)");
-  for (const char* required : {"luts", "out"})
-    if (!args.count(required)) throw UsageError(std::string("missing --") + required);
-  const bool particles = args.count("particles") > 0;
+  const bool particles = args.count("particles") > 0, dump = args.count("dump-particles") > 0;
+  if (dump && particles) throw UsageError("--dump-particles applies to cloudscapes (--scene), not to --particles");
+  if (!args.count("luts")) throw UsageError("missing --luts");
+  if (!args.count("out") && !dump) throw UsageError("missing --out");
 
-  const fs::path out = args["out"].as<std::string>();
+  const fs::path out = args.count("out") ? args["out"].as<std::string>() : std::string("unused.png");
   const std::string ext = lowerExtension(out);
   if (ext != ".png" && ext != ".exr")
     throw UsageError("--out: expected a .png or .exr file name, got '" + out.string() + "'");
@@ -139,6 +144,32 @@ int runRender(int argc, char** argv) {
                        std::to_string(path->frames.size()));
   }
   const io::LutSet luts = io::readLutSet(args["luts"].as<std::string>());
+  const float radius = static_cast<float>(io::mediumFromLutSet(args["luts"].as<std::string>()).radius);
+  const auto single = luts.tables.find("single_scattering");  // the renderer reports a missing table
+  if (!particles && !args.count("quiet") && single != luts.tables.end()) {
+    // One warning when the cloudscape needs denser particles than the scattering tables' axis
+    // holds (thinner ones are faded particles, nearly transparent: clamping them is harmless).
+    const glm::vec2 need = scene::cloudscapeDensityRange(cloudscape.cloud, quality, radius);
+    const Axis& axis = single->second.table.axes()[3];
+    if (std::log2(need.y) > axis.max + 1e-6)
+      std::fprintf(stderr, "cloudlut render: warning: %s needs densities up to %.3g, the tables end at %.3g "
+                   "(bake --for-scene %s); denser particles are shaded as %.3g\n", cloudscape.name.c_str(), need.y,
+                   std::exp2(axis.max), cloudscape.name.c_str(), std::exp2(axis.max));
+  }
+  if (dump) {
+    // The particles as drawn for the first frame's camera, with the tables' reference radius.
+    const scene::CpuGeneration g =
+        scene::generateCloudscapeAround(cloudscape.cloud, quality, settings.view.camera.eye, radius);
+    std::vector<scene::Particle> list;
+    for (const scene::GridParticle& p : g.particles) list.push_back(p.particle);
+    const std::string file = args["dump-particles"].as<std::string>();
+    io::writeFileAtomically(file, scene::sceneText(scene::sceneDocument(
+                                      list, settings.view, "cloudscape " + cloudscape.name + ", quality " + quality.name)));
+    if (!args.count("quiet"))
+      std::printf("wrote %s: %zu particles%s\n", file.c_str(), list.size(),
+                  list.size() > scene::kMaxRenderParticles ? " (more than render --particles takes: use --quality low)" : "");
+    if (!args.count("out")) return kExitOk;
+  }
 
   const auto t0 = std::chrono::steady_clock::now();
   const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();

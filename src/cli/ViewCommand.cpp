@@ -35,7 +35,7 @@ int runView(int argc, char** argv) {
   options.add_options()
     ("luts", "LUT directory, or a directory of LUT sets (e.g. orders18/ and converged/; N switches)", cxxopts::value<std::string>())
     ("particles", "scene file (JSON, docs/SCENE_FORMAT.md)", cxxopts::value<std::string>())
-    ("scene", "cloudscape preset (fair_weather_cumulus, stratocumulus, overcast, cumulus_congestus) or file; default fair_weather_cumulus", cxxopts::value<std::string>())
+    ("scene", "cloudscape preset (fair_weather_cumulus, stratocumulus, overcast, cumulus_congestus, towering_cumulus_sunset) or file; default fair_weather_cumulus", cxxopts::value<std::string>())
     ("quality", "first cloudscape grid preset: low, medium, high (keys 1 2 3)", cxxopts::value<std::string>()->default_value("low"))
     ("blend", "first blending: alpha or volume (key B; default: volume for cloudscapes, alpha for --particles)", cxxopts::value<std::string>())
     ("downscale", "first particle resolution 1/N: 1, 2, 4 (key G)", cxxopts::value<int>()->default_value("1"))

@@ -35,12 +35,13 @@ CloudscapeGeneration::CloudscapeGeneration(const GlFunctions& gl, const StorageB
 }
 
 CloudscapeGeneration::Result CloudscapeGeneration::run(const scene::CloudType& cloud, const scene::QualityPreset& q,
-                                                       const RenderSettings& s, bool sortKeys) {
+                                                       const RenderSettings& s, bool sortKeys,
+                                                       float referenceRadius) {
   if (q.layers > kGridLayerLimit || q.rings > kGridRingLimit)
     throw UsageError("quality '" + q.name + "': " + std::to_string(q.rings) + " rings of " + std::to_string(q.layers) +
                      " layers; the particle records tell at most " + std::to_string(kGridLayerLimit) +
                      " layers and " + std::to_string(kGridRingLimit) + " rings apart");
-  const scene::GridParameters g = scene::gridParameters(cloud, q);
+  const scene::GridParameters g = scene::gridParameters(cloud, q, referenceRadius);
   const std::size_t capacity = static_cast<std::size_t>(q.maxParticles());
   std::size_t pow2 = 1;
   while (pow2 < capacity) pow2 <<= 1;
@@ -78,6 +79,7 @@ CloudscapeGeneration::Result CloudscapeGeneration::run(const scene::CloudType& c
     gl_.Uniform4fv(p.uniform("uG1"), 1, glm::value_ptr(g.g1));
     gl_.Uniform4fv(p.uniform("uG2"), 1, glm::value_ptr(g.g2));
     gl_.Uniform4fv(p.uniform("uG3"), 1, glm::value_ptr(g.g3));
+    gl_.Uniform4fv(p.uniform("uG4"), 1, glm::value_ptr(g.g4));
     gl_.Uniform3f(p.uniform("uEye"), eye.x, eye.y, eye.z);
     gl_.Uniform3f(p.uniform("uSun"), sun.x, sun.y, sun.z);
     gl_.Uniform4fv(p.uniform("uPlanes"), 5, glm::value_ptr(fr.planes[0]));

@@ -29,10 +29,11 @@ class CloudscapeGeneration {
     float farPlane = 1.0f;
   };
 
-  // Generates for the settings' camera and sun (UsageError when the quality's buffers exceed the
-  // storage budget or its layers exceed kGridLayerLimit); sorts the keys when `sortKeys`.
+  // Generates for the settings' camera and sun with the tables' reference radius R (m; UsageError
+  // when the quality's buffers exceed the storage budget or its layers exceed kGridLayerLimit);
+  // sorts the keys when `sortKeys`.
   Result run(const scene::CloudType& cloud, const scene::QualityPreset& quality, const RenderSettings& settings,
-             bool sortKeys);
+             bool sortKeys, float referenceRadius);
 
   // The first `count` records as grid particles (unpackGridParticle).
   scene::CpuGeneration readBack(const Result& generated, const scene::CloudType& cloud,

@@ -37,12 +37,14 @@ scene::GridParticle unpackGridParticle(const GpuParticleRecord& r, const scene::
   scene::GridParticle gp;
   gp.particle.center = {r.centerDensity[0], r.centerDensity[1], r.centerDensity[2]};
   gp.particle.density = r.centerDensity[3];
-  const glm::vec3 c0(r.toWorld[0][0], r.toWorld[0][1], r.toWorld[0][2]);
-  const glm::vec3 c1(r.toWorld[1][0], r.toWorld[1][1], r.toWorld[1][2]);
-  const glm::vec3 c2(r.toWorld[2][0], r.toWorld[2][1], r.toWorld[2][2]);
-  gp.particle.radii = {glm::length(c0), glm::length(c1), glm::length(c2)};
-  gp.particle.rotation =
-      glm::quat_cast(glm::mat3(c0 / gp.particle.radii.x, c1 / gp.particle.radii.y, c2 / gp.particle.radii.z));
+  // A generated record maps by M = diag(radii) · Q (cloudscape_generate.comp.glsl): row k of M
+  // is radii[k] times row k of Q.
+  glm::mat3 m;
+  for (int c = 0; c < 3; ++c) m[c] = glm::vec3(r.toWorld[c][0], r.toWorld[c][1], r.toWorld[c][2]);
+  const glm::mat3 mt = glm::transpose(m);
+  gp.particle.radii = {glm::length(mt[0]), glm::length(mt[1]), glm::length(mt[2])};
+  gp.particle.noiseRotation = glm::normalize(glm::quat_cast(
+      glm::transpose(glm::mat3(mt[0] / gp.particle.radii.x, mt[1] / gp.particle.radii.y, mt[2] / gp.particle.radii.z))));
   const int id = static_cast<int>(r.toWorld[0][3]);
   gp.ring = id / kGridLayerLimit;
   gp.layer = id % kGridLayerLimit;

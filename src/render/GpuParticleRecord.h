@@ -47,7 +47,8 @@ static_assert(static_cast<long long>(kGridRingLimit) * kGridLayerLimit <= (1LL <
 // identity 0.
 GpuParticleRecord packParticle(const scene::Particle& particle, const glm::vec3& sunDirection);
 
-// A generated particle read back: its shape from the record and its grid identity (the
+// A generated particle read back: its shape from the record (radii and the reference particle's
+// rotation; the ellipsoid itself is not turned) and its grid identity (the
 // level-of-detail weight is not stored, the generator folds it into density and size; it is
 // recomputed from the identity with the same grid function, scene/glsl/cloudscape_grid.glsl).
 scene::GridParticle unpackGridParticle(const GpuParticleRecord& record, const scene::GridParameters& grid,

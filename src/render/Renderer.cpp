@@ -201,7 +201,7 @@ struct Renderer::Impl {
     validate(s);
     const Stopwatch clock;
     const bool alpha = s.blend == BlendMode::Alpha;
-    const CloudscapeGeneration::Result g = generation.run(cloud, q, s, alpha);
+    const CloudscapeGeneration::Result g = generation.run(cloud, q, s, alpha, particles.tables().referenceRadius());
     gl.Finish();
     if (stats) {
       stats->generateSeconds = clock.seconds();
@@ -257,7 +257,7 @@ struct Renderer::Impl {
   scene::CpuGeneration generateOnGpu(const scene::CloudType& cloud, const scene::QualityPreset& q,
                                      const RenderSettings& s) {
     validate(s);
-    return generation.readBack(generation.run(cloud, q, s, false), cloud, q, s);
+    return generation.readBack(generation.run(cloud, q, s, false, particles.tables().referenceRadius()), cloud, q, s);
   }
 
   Renderer::SunVolumeSnapshot sunVolumeOf(const std::vector<scene::Particle>& list, const RenderSettings& s) {

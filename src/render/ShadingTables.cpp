@@ -54,6 +54,9 @@ ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, co
   unitOpticalRadius_ = cloudlut::unitOpticalRadius(od);
   if (!(unitOpticalRadius_ > 0.0f) || !std::isfinite(unitOpticalRadius_))
     throw FileError(luts_, "optical_depth: extinction_per_m · radius_m is not a positive number");
+  referenceRadius_ = static_cast<float>(od.parameters().value("radius_m", defaults::kParticleRadiusMetres));
+  if (!(referenceRadius_ > 0.0f) || !std::isfinite(referenceRadius_))
+    throw FileError(luts_, "optical_depth: radius_m is not a positive number");
   // The phases the tables were baked with (FileError naming the field when malformed); a table
   // that records none was baked with the defaults.
   const auto phaseOf = [&](const Table4D& t, const char* key, const Phase& fallback) {

@@ -27,6 +27,8 @@ class ShadingTables {
   ShadingTables& operator=(const ShadingTables&) = delete;
 
   float unitOpticalRadius() const { return unitOpticalRadius_; }
+  // Radius R of the optical-depth table's reference particle (its radius_m), m.
+  float referenceRadius() const { return referenceRadius_; }
   // Mean cosine ∫ μ P(μ) dω of the multiple table's later phase function (its `later_phase`;
   // dimensionless): the asymmetry of the light's diffuse transport between particles.
   float laterPhaseAsymmetry() const { return laterAsymmetry_; }
@@ -52,6 +54,7 @@ class ShadingTables {
   std::string luts_;
   Texture opticalDepth_, single_, multiple_;
   float unitOpticalRadius_ = 0;
+  float referenceRadius_ = 0;
   int firstPhaseKind_ = 2;
   float firstPhaseParam_ = 0.9f;
   float laterAsymmetry_ = 0.0f;

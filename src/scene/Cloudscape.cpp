@@ -53,7 +53,7 @@ QualityPreset qualityPreset(const std::string& name) {
 
 const std::vector<std::string>& cloudscapePresetNames() {
   static const std::vector<std::string> names{"cumulus_congestus", "fair_weather_cumulus", "overcast",
-                                              "stratocumulus"};
+                                              "stratocumulus", "towering_cumulus_sunset"};
   return names;
 }
 
@@ -65,8 +65,8 @@ CloudscapeScene parseCloudscape(const nlohmann::json& doc, const std::string& so
   if (!doc.is_object()) fail(source, "(document)", "expected a JSON object");
   static const std::set<std::string> allowed{"description", "coverage", "density", "cloud_base_m", "cloud_top_m",
                                              "particle_size", "vertical_aspect", "noise_scale_m", "cell_size_m",
-                                             "jitter", "visibility_m", "fade_fraction", "seed", "camera", "sun",
-                                             "sky"};
+                                             "jitter", "visibility_m", "fade_fraction", "height_profile", "top_taper",
+                                             "edge_density", "seed", "camera", "sun", "sky"};
   for (const auto& item : doc.items())
     if (!allowed.count(item.key())) {
       std::string list;
@@ -100,6 +100,9 @@ CloudscapeScene parseCloudscape(const nlohmann::json& doc, const std::string& so
   c.jitter = number(doc, source, "jitter", 0.0f, 1.0f, c.jitter);
   c.visibility = number(doc, source, "visibility_m", 10.0f, 1e7f, c.visibility);
   c.fadeFraction = number(doc, source, "fade_fraction", 0.01f, 0.9f, c.fadeFraction);
+  c.heightProfile = number(doc, source, "height_profile", 0.05f, 4.0f, c.heightProfile);
+  c.topTaper = number(doc, source, "top_taper", 0.0f, 0.9f, c.topTaper);
+  c.edgeDensity = number(doc, source, "edge_density", 0.01f, 1.0f, c.edgeDensity);
   c.seed = static_cast<int>(number(doc, source, "seed", 0.0f, 1e6f, static_cast<float>(c.seed)));
   // Camera, sun and sky: the scene format's fields, validated by its parser.
   nlohmann::json view = nlohmann::json::object();
@@ -137,12 +140,13 @@ CloudscapeScene loadCloudscape(const std::string& nameOrPath, const std::string&
   return parseCloudscape(doc, nameOrPath);
 }
 
-GridParameters gridParameters(const CloudType& c, const QualityPreset& q) {
+GridParameters gridParameters(const CloudType& c, const QualityPreset& q, float referenceRadius) {
   GridParameters p;
   p.g0 = {c.cellSize, static_cast<float>(q.ringDim), static_cast<float>(q.rings), static_cast<float>(q.layers)};
   p.g1 = {c.coverage, c.density, c.cloudBase, c.cloudTop};
   p.g2 = {c.particleSize.x, c.particleSize.y, c.verticalAspect, c.noiseScale};
   p.g3 = {c.jitter, modelledFarDistance(c, q), static_cast<float>(c.seed), c.fadeFraction};
+  p.g4 = {referenceRadius, c.heightProfile, c.topTaper, c.edgeDensity};
   return p;
 }
 
@@ -152,14 +156,14 @@ float modelledFarDistance(const CloudType& c, const QualityPreset& q) {
   return std::min(c.visibility, outer);
 }
 
-glm::vec2 cloudscapeDensityRange(const CloudType& c, const QualityPreset& q) {
-  // ρ = density · mix(0.5, 1, amount) · r / R · weight, r = cell · size · taper · mix(0.6, 1, amount) · lod;
-  // weights below 1/16 are faded-out particles and not counted.
-  const float minR = c.cellSize * c.particleSize.x * 0.55f * 0.6f * 0.5f;
-  const float maxR = c.cellSize * std::exp2(static_cast<float>(q.rings - 1)) * c.particleSize.y;
-  // R as the generator shader uses it (CG_REFERENCE_RADIUS, equal to the default: tests/test_defaults.cpp)
-  const float R = static_cast<float>(defaults::kParticleRadiusMetres);
-  return {c.density * 0.5f * minR / R / 16.0f, c.density * maxR / R};
+glm::vec2 cloudscapeDensityRange(const CloudType& c, const QualityPreset& q, float referenceRadius) {
+  // ρ = density · ramp(amount) · cell₀ · rel / R · weight (cloudscape_grid.glsl, cgParticle) with
+  // rel = size · taper · mix(0.7, 1, amount): the same in every ring (mass conservation).
+  (void)q;
+  const float relMin = c.particleSize.x * (1.0f - c.topTaper) * 0.7f;
+  const float relMax = c.particleSize.y;
+  const float R = referenceRadius;
+  return {c.density * c.edgeDensity * c.cellSize * relMin / R / 16.0f, c.density * c.cellSize * relMax / R};
 }
 
 Frustum cameraFrustum(const Camera& camera, int width, int height) {
@@ -183,12 +187,17 @@ Frustum cameraFrustum(const Camera& camera, int width, int height) {
   return fr;
 }
 
-CpuGeneration generateCloudscapeCpu(const CloudType& cloud, const QualityPreset& q, const Camera& camera,
-                                    int width, int height) {
-  const GridParameters g = gridParameters(cloud, q);
-  const Frustum fr = cameraFrustum(camera, width, height);
-  const glm::vec3 eye = camera.eye;
+namespace {
+
+// The grid's particles around `eye`; with a frustum, only the cells and particles in it.
+CpuGeneration generate(const CloudType& cloud, const QualityPreset& q, const glm::vec3& eye, const Frustum* fr,
+                       float referenceRadius) {
+  const GridParameters g = gridParameters(cloud, q, referenceRadius);
   const glm::vec2 camXZ(eye.x, eye.z);
+  // No frustum: planes every point is inside (0 · p + 1 ≥ 0).
+  Frustum all;
+  for (glm::vec4& p : all.planes) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  const Frustum& f = fr ? *fr : all;
   CpuGeneration out;
   for (int ring = 0; ring < q.rings; ++ring) {
     const glm::ivec2 origin = grid::cgRingOrigin(camXZ, ring, g.g0);
@@ -200,23 +209,23 @@ CpuGeneration generateCloudscapeCpu(const CloudType& cloud, const QualityPreset&
         const float w = grid::cgRingWeight(ring, std::max(delta.x, delta.y), g.g0, g.g3);
         if (!(w > 0.0f)) continue;
         const float amount = grid::cgCoverage(centre, g.g1, g.g2, g.g3);
-        const int layers = grid::cgLayerCount(amount, g.g0);
+        const int layers = grid::cgLayerCount(amount, g.g0, g.g4);
         if (layers < 1) continue;
         const glm::vec4 b = grid::cgCellBound(ring, ix, iz, g.g0, g.g1, g.g2, g.g3);
-        if (!grid::cgVisible(glm::vec3(b), b.w, eye, g.g3.y + b.w, fr.planes[0], fr.planes[1], fr.planes[2],
-                             fr.planes[3], fr.planes[4]))
+        if (!grid::cgVisible(glm::vec3(b), b.w, eye, g.g3.y + b.w, f.planes[0], f.planes[1], f.planes[2],
+                             f.planes[3], f.planes[4]))
           continue;
         ++out.validCells;
         for (int k = 0; k < layers; ++k) {
-          const grid::CgParticle p = grid::cgParticle(ring, ix, iz, k, amount, w, g.g0, g.g1, g.g2, g.g3);
+          const grid::CgParticle p = grid::cgParticle(ring, ix, iz, k, amount, w, g.g0, g.g1, g.g2, g.g3, g.g4);
           const float reach = std::max(p.radii.x, p.radii.y);
-          if (!grid::cgVisible(p.centre, reach, eye, g.g3.y, fr.planes[0], fr.planes[1], fr.planes[2], fr.planes[3],
-                               fr.planes[4]))
+          if (!grid::cgVisible(p.centre, reach, eye, g.g3.y, f.planes[0], f.planes[1], f.planes[2], f.planes[3],
+                               f.planes[4]))
             continue;
           GridParticle gp;
           gp.particle.center = p.centre;
           gp.particle.radii = p.radii;
-          gp.particle.rotation = glm::angleAxis(p.yaw, glm::vec3(0.0f, 1.0f, 0.0f));
+          gp.particle.noiseRotation = glm::quat(p.noise.w, p.noise.x, p.noise.y, p.noise.z);
           gp.particle.density = p.density;
           gp.ring = ring;
           gp.cellX = ix;
@@ -228,6 +237,19 @@ CpuGeneration generateCloudscapeCpu(const CloudType& cloud, const QualityPreset&
       }
   }
   return out;
+}
+
+}  // namespace
+
+CpuGeneration generateCloudscapeCpu(const CloudType& cloud, const QualityPreset& q, const Camera& camera,
+                                    int width, int height, float referenceRadius) {
+  const Frustum fr = cameraFrustum(camera, width, height);
+  return generate(cloud, q, camera.eye, &fr, referenceRadius);
+}
+
+CpuGeneration generateCloudscapeAround(const CloudType& cloud, const QualityPreset& q, const glm::vec3& eye,
+                                       float referenceRadius) {
+  return generate(cloud, q, eye, nullptr, referenceRadius);
 }
 
 Camera cameraOnPath(const Camera& start, int frame, float speed, float yawDegPerFrame) {

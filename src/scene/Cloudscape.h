@@ -44,6 +44,9 @@ struct CloudType {
   float jitter = 0.8f;           // random displacement, fraction of a cell
   float visibility = 40000.0f;   // m, far plane: no particle beyond it
   float fadeFraction = 0.25f;    // share of a ring over which it cross-fades with the next
+  float heightProfile = 1.0f;    // column height = amount^p: p < 1 flat-topped sheets, 1 domed heaps
+  float topTaper = 0.3f;         // the top particle of a column is this much smaller than the bottom one
+  float edgeDensity = 0.35f;     // density at a cloud's edge relative to its core
   int seed = 1;
 };
 
@@ -63,18 +66,23 @@ inline constexpr const char* kDefaultCloudscape = "fair_weather_cumulus";
 // True when the JSON document is a cloudscape (no "particles" array).
 bool isCloudscapeDocument(const nlohmann::json& document);
 
-// Grid parameters as the shader takes them (cloudscape_grid.glsl: g0 … g3).
+// Grid parameters as the shader takes them (cloudscape_grid.glsl: g0 … g4). `referenceRadius` is
+// the radius R (m) of the tables' reference particle (their radius_m): a particle of world radius
+// r gets ρ ∝ r₀/R (r₀ its ring-0 radius) so that it is drawn with the optical depth it models.
 struct GridParameters {
-  glm::vec4 g0, g1, g2, g3;
+  glm::vec4 g0, g1, g2, g3, g4;
 };
-GridParameters gridParameters(const CloudType& cloud, const QualityPreset& quality);
+GridParameters gridParameters(const CloudType& cloud, const QualityPreset& quality,
+                              float referenceRadius = static_cast<float>(defaults::kParticleRadiusMetres));
 
 // The far distance that is modelled: the visibility, or less when the outer ring ends sooner.
 float modelledFarDistance(const CloudType& cloud, const QualityPreset& quality);
 
-// Range of the particles' density scales ρ this cloudscape can produce (for bake --for-scene):
-// the tables' density axis should cover it.
-glm::vec2 cloudscapeDensityRange(const CloudType& cloud, const QualityPreset& quality);
+// Range of the particles' density scales ρ this cloudscape can produce for tables of reference
+// radius R (for bake --for-scene): the tables' density axis should cover it. Particles faded below
+// a level-of-detail weight of 1/16 are not counted.
+glm::vec2 cloudscapeDensityRange(const CloudType& cloud, const QualityPreset& quality,
+                                 float referenceRadius = static_cast<float>(defaults::kParticleRadiusMetres));
 
 // Frustum planes (dot(n, p) + w ≥ 0 inside: left, right, bottom, top, near) of a camera.
 struct Frustum {
@@ -95,7 +103,12 @@ struct CpuGeneration {
 };
 // CPU reference of the GPU generation: the same cells, the same particles (any order).
 CpuGeneration generateCloudscapeCpu(const CloudType& cloud, const QualityPreset& quality, const Camera& camera,
-                                    int width, int height);
+                                    int width, int height,
+                                    float referenceRadius = static_cast<float>(defaults::kParticleRadiusMetres));
+// Every particle the grid generates around the eye within the modelled far distance, before any
+// frustum culling (the level-of-detail weight folded into the density, as drawn).
+CpuGeneration generateCloudscapeAround(const CloudType& cloud, const QualityPreset& quality, const glm::vec3& eye,
+                                       float referenceRadius = static_cast<float>(defaults::kParticleRadiusMetres));
 
 // The camera of frame `frame` on the simple path of `--frames`: forward along the horizontal
 // view direction at `speed` m per frame, turning by `yawDegPerFrame`.

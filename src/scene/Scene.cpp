@@ -19,16 +19,16 @@ namespace cloudlut::scene {
 
 glm::mat3 Particle::toWorld() const {
   const glm::mat3 r = glm::mat3_cast(rotation);
-  return glm::mat3(r[0] * radii.x, r[1] * radii.y, r[2] * radii.z);
+  return glm::mat3(r[0] * radii.x, r[1] * radii.y, r[2] * radii.z) * glm::mat3_cast(noiseRotation);
 }
 
 glm::mat3 Particle::toParticle() const {
-  // (R · D)⁻¹ = D⁻¹ · Rᵀ: row k of the result is column k of R divided by radii[k].
+  // (R · D · Q)⁻¹ = Qᵀ · D⁻¹ · Rᵀ: row k of D⁻¹ · Rᵀ is column k of R divided by radii[k].
   const glm::mat3 rt = glm::transpose(glm::mat3_cast(rotation));
   glm::mat3 m;
   for (int c = 0; c < 3; ++c)
     m[c] = glm::vec3(rt[c].x / radii.x, rt[c].y / radii.y, rt[c].z / radii.z);
-  return m;
+  return glm::transpose(glm::mat3_cast(noiseRotation)) * m;
 }
 
 glm::quat quatFromEulerDegrees(const glm::vec3& degrees) {
@@ -110,7 +110,7 @@ class Validator {
 
 Particle parseParticle(const Validator& check, const nlohmann::json& j, const std::string& field) {
   check.requireObject(j, field);
-  check.onlyKeys(j, field, {"center", "radii", "quaternion", "euler_deg", "density"});
+  check.onlyKeys(j, field, {"center", "radii", "quaternion", "euler_deg", "noise_quaternion", "density"});
   Particle p;
   if (!j.contains("center")) check.fail(field + ".center", "missing (expected 3 numbers)");
   p.center = check.vec3(j["center"], field + ".center");
@@ -133,10 +133,11 @@ Particle parseParticle(const Validator& check, const nlohmann::json& j, const st
     check.fail(rf, "radii differ by more than a factor of 10^6");
   if (j.contains("quaternion") && j.contains("euler_deg"))
     check.fail(field, "give either \"quaternion\" or \"euler_deg\", not both");
-  if (j.contains("quaternion")) {
-    const std::string qf = field + ".quaternion";
+  // A unit quaternion [w, x, y, z] (normalised) from the field `key`.
+  const auto quaternion = [&](const char* key) {
+    const std::string qf = field + "." + key;
     const char* qExpected = "expected 4 numbers [w, x, y, z], not all zero";
-    const nlohmann::json& q = j["quaternion"];
+    const nlohmann::json& q = j[key];
     if (!q.is_array() || q.size() != 4) check.fail(qf, qExpected);
     glm::quat value;
     value.w = check.finiteNumber(q[0], qf, qExpected);
@@ -144,10 +145,14 @@ Particle parseParticle(const Validator& check, const nlohmann::json& j, const st
     value.y = check.finiteNumber(q[2], qf, qExpected);
     value.z = check.finiteNumber(q[3], qf, qExpected);
     if (!(glm::length(value) > 1e-6f)) check.fail(qf, qExpected);
-    p.rotation = glm::normalize(value);
+    return glm::normalize(value);
+  };
+  if (j.contains("quaternion")) {
+    p.rotation = quaternion("quaternion");
   } else if (j.contains("euler_deg")) {
     p.rotation = quatFromEulerDegrees(check.vec3(j["euler_deg"], field + ".euler_deg"));
   }
+  if (j.contains("noise_quaternion")) p.noiseRotation = quaternion("noise_quaternion");
   if (j.contains("density")) p.density = check.positive(j["density"], field + ".density");
   return p;
 }

@@ -22,14 +22,17 @@
 
 namespace cloudlut::scene {
 
-// One particle: the unit sphere mapped to the world by x = center + R · diag(radii) · p.
+// One particle: the unit sphere mapped to the world by x = center + R · diag(radii) · Q · p. Q
+// turns the reference particle (its density noise) inside the ellipsoid before it is scaled; R
+// turns the ellipsoid (docs/SCENE_FORMAT.md).
 struct Particle {
   glm::vec3 center{0.0f};
   glm::vec3 radii{1.0f};                         // semi-axes along the particle's own x, y, z
-  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};    // unit quaternion (w, x, y, z)
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};    // R, unit quaternion (w, x, y, z)
   float density = 1.0f;                          // density scale ρ (dimensionless)
+  glm::quat noiseRotation{1.0f, 0.0f, 0.0f, 0.0f};  // Q, unit quaternion (w, x, y, z)
 
-  // World ← particle (unit sphere) linear part R · diag(radii), and its inverse.
+  // World ← particle (unit sphere) linear part R · diag(radii) · Q, and its inverse.
   glm::mat3 toWorld() const;
   glm::mat3 toParticle() const;
 };

@@ -8,7 +8,8 @@
 //   STAGE 2: one thread per valid cell (glDispatchComputeIndirect): its particles, culled
 //            against the frustum and the far distance, appended to the particle buffer with their
 //            back-to-front sort key. The level-of-detail weight is folded into each particle's
-//            density and size (cgParticle) and not stored.
+//            density (cgParticle) and not stored. A record maps the unit sphere by
+//            diag(radii) · Q (Q the particle's rotation of the reference particle).
 
 layout(local_size_x = GROUP_SIZE) in;
 
@@ -16,6 +17,7 @@ uniform vec4 uG0;
 uniform vec4 uG1;
 uniform vec4 uG2;
 uniform vec4 uG3;
+uniform vec4 uG4;
 uniform vec3 uEye;
 uniform vec3 uSun;  // unit, toward the sun (the records' shadow-ray extinction scale)
 uniform vec4 uPlanes[5];
@@ -50,7 +52,7 @@ void main() {
   float w = cgRingWeight(ring, max(delta.x, delta.y), uG0, uG3);
   if (!(w > 0.0f)) return;
   float amount = cgCoverage(centre, uG1, uG2, uG3);
-  int layers = cgLayerCount(amount, uG0);
+  int layers = cgLayerCount(amount, uG0, uG4);
   if (layers < 1) return;
   vec4 b = cgCellBound(ring, ix, iz, uG0, uG1, uG2, uG3);
   if (!cgVisible(b.xyz, b.w, uEye, uG3.y + b.w, uPlanes[0], uPlanes[1], uPlanes[2], uPlanes[3], uPlanes[4])) return;
@@ -68,7 +70,7 @@ void main() {
   float w = cgRingWeight(ring, max(delta.x, delta.y), uG0, uG3);
   float amount = cgCoverage(centre, uG1, uG2, uG3);
   for (int k = 0; k < cell.w; ++k) {
-    CgParticle p = cgParticle(ring, cell.x, cell.y, k, amount, w, uG0, uG1, uG2, uG3);
+    CgParticle p = cgParticle(ring, cell.x, cell.y, k, amount, w, uG0, uG1, uG2, uG3, uG4);
     float reach = max(p.radii.x, p.radii.y);
     if (!cgVisible(p.centre, reach, uEye, uG3.y, uPlanes[0], uPlanes[1], uPlanes[2], uPlanes[3], uPlanes[4]))
       continue;
@@ -77,24 +79,24 @@ void main() {
       atomicAdd(particleOverflow, 1u);
       continue;
     }
-    float cy = cos(p.yaw);
-    float sy = sin(p.yaw);
-    // R_y(yaw) columns: (cos, 0, -sin), (0, 1, 0), (sin, 0, cos).
-    vec3 c0 = vec3(cy, 0.0f, -sy);
-    vec3 c1 = vec3(0.0f, 1.0f, 0.0f);
-    vec3 c2 = vec3(sy, 0.0f, cy);
-    // Inverse: diag(1/r) · R^T; column k of it is (R row k) / r.
-    vec3 i0 = vec3(c0.x / p.radii.x, c1.x / p.radii.y, c2.x / p.radii.z);
-    vec3 i1 = vec3(c0.y / p.radii.x, c1.y / p.radii.y, c2.y / p.radii.z);
-    vec3 i2 = vec3(c0.z / p.radii.x, c1.z / p.radii.y, c2.z / p.radii.z);
+    // toWorld = diag(r) · Q (column k: r ⊙ Q column k); toParticle = Qᵀ · diag(1/r).
+    mat3 q = cgRotationMatrix(p.noise);
+    vec3 c0 = q[0] * p.radii;
+    vec3 c1 = q[1] * p.radii;
+    vec3 c2 = q[2] * p.radii;
+    mat3 inv = transpose(q) * mat3(vec3(1.0f / p.radii.x, 0.0f, 0.0f), vec3(0.0f, 1.0f / p.radii.y, 0.0f),
+                                   vec3(0.0f, 0.0f, 1.0f / p.radii.z));
+    vec3 i0 = inv[0];
+    vec3 i1 = inv[1];
+    vec3 i2 = inv[2];
     GpuParticle g;
     g.centerDensity = vec4(p.centre, p.density);
     g.toParticle[0] = vec4(i0, length(mat3(i0, i1, i2) * uSun));
     g.toParticle[1] = vec4(i1, 1.0001f * max(p.radii.x, max(p.radii.y, p.radii.z)));
     g.toParticle[2] = vec4(i2, 1.0f);  // sunlight until the occlusion pass
-    g.toWorld[0] = vec4(c0 * p.radii.x, float(ring * GRID_LAYER_LIMIT + k));
-    g.toWorld[1] = vec4(c1 * p.radii.y, float(cell.x));
-    g.toWorld[2] = vec4(c2 * p.radii.z, float(cell.y));
+    g.toWorld[0] = vec4(c0, float(ring * GRID_LAYER_LIMIT + k));
+    g.toWorld[1] = vec4(c1, float(cell.x));
+    g.toWorld[2] = vec4(c2, float(cell.y));
     particles[slot] = g;
     sortKeys[slot] = uvec2(floatBitsToUint(length(p.centre - uEye)), slot);
   }

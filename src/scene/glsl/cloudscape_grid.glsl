@@ -11,27 +11,31 @@
 // cell centre from the camera, continuous camera position), ring r + 1 fades in over the same
 // span, so a change of level of detail never pops.
 //
-// Parameters (packed in four vec4):
+// Parameters (packed in five vec4):
 //   g0 = (cellSize0 [m], ringDim, rings, layers)
 //   g1 = (coverage [0, 1], density scale, cloud base [m], cloud top [m])
 //   g2 = (size min, size max (particle radius / cell size), vertical aspect, coverage noise scale [m])
 //   g3 = (jitter (fraction of a cell), far distance [m], seed, fade fraction of a ring)
+//   g4 = (reference radius R of the tables [m], height-profile exponent, top taper, edge density)
+//
+// Mass conservation (docs/SCENE_FORMAT.md, "Cloudscapes"): a particle of semi-axes (a, b, a) and density scale ρ
+// adds ∫ τ dA = (4π/3) σ ρ a² to the area integral of the vertical column optical depth (σ the
+// tables' unit optical radius, τ = σ ρ ℓ along a unit-sphere chord ℓ; independent of b). A ring
+// keeps the same layers per cell and the same radius per cell size, so the column optical depth
+// per unit area is the same in every ring when ρ does not depend on the ring: ρ is that of the
+// ring-0 particle of the same relative size. The level-of-detail weights of two overlapping rings
+// sum to 1 and multiply ρ only, so a cross-fade conserves it too.
 
 #ifndef CLOUDLUT_FN
 #define CLOUDLUT_FN
 #endif
 
-// Radius of the reference particle of the tables (R = 183.8 m, core/Defaults.h
-// kParticleRadiusMetres; tests/test_defaults.cpp checks they are equal): a particle of world
-// radius r is given density ρ·r/R so that it is as thick as a reference particle of that size.
-const float CG_REFERENCE_RADIUS = 183.8f;
-
 struct CgParticle {
   vec3 centre;
-  vec3 radii;    // x, z horizontal semi-axes, y vertical
-  float yaw;     // rotation about +y, radians
-  float density;
-  float weight;  // level-of-detail fade weight in (0, 1]
+  vec3 radii;     // x, z horizontal semi-axes, y vertical (axis-aligned ellipsoid)
+  vec4 noise;     // unit quaternion (x, y, z, w) turning the reference particle before scaling
+  float density;  // ρ, the level-of-detail weight folded in
+  float weight;   // level-of-detail fade weight in (0, 1]
 };
 
 // A 32-bit integer hash (good avalanche, exact on every platform).
@@ -122,16 +126,23 @@ CLOUDLUT_FN vec2 cgCellCentre(int ring, int ix, int iz, vec4 g0) {
   return (vec2(float(ix), float(iz)) + vec2(0.5f)) * cgCellSize(ring, g0);
 }
 
-// Number of particle layers of a cell of cloud amount c (0 = an empty cell).
-CLOUDLUT_FN int cgLayerCount(float c, vec4 g0) {
-  return min(int(g0.w), int(c * g0.w + 0.5f));
+// Height of the cloud column above the base, as a fraction of the layer (0, 1]: amount^p with
+// the profile exponent p = g4.y (p < 1: flat-topped sheets, stratocumulus; p ≈ 1: domed heaps).
+CLOUDLUT_FN float cgColumnHeight(float c, vec4 g4) { return pow(max(c, 1e-6f), g4.y); }
+
+// Number of particle layers of a cell of cloud amount c (0 = an empty cell): the layers of the
+// column's height, at least one when the cell has cloud.
+CLOUDLUT_FN int cgLayerCount(float c, vec4 g0, vec4 g4) {
+  if (!(c > 0.0f)) return 0;
+  return clamp(int(ceil(cgColumnHeight(c, g4) * g0.w - 0.05f)), 1, int(g0.w));
 }
 
-// Largest horizontal and vertical radius a particle of ring `ring` can have.
+// Largest horizontal and vertical radius a particle of ring `ring` can have [m]; particles stay
+// inside the layer, so the vertical one is at most half the layer.
 CLOUDLUT_FN vec2 cgMaxRadii(int ring, vec4 g0, vec4 g1, vec4 g2) {
   float r = cgCellSize(ring, g0) * g2.y;
   float spacing = (g1.w - g1.z) / g0.w;
-  return vec2(r, max(r * g2.z, 0.6f * spacing));
+  return vec2(r, min(max(r * g2.z, 0.6f * spacing), 0.5f * (g1.w - g1.z)));
 }
 
 // A sphere that holds every particle a cell can emit (centre xyz, radius w).
@@ -140,7 +151,7 @@ CLOUDLUT_FN vec4 cgCellBound(int ring, int ix, int iz, vec4 g0, vec4 g1, vec4 g2
   vec2 c = cgCellCentre(ring, ix, iz, g0);
   vec2 rr = cgMaxRadii(ring, g0, g1, g2);
   float halfWidth = 0.5f * s * (1.0f + g3.x) + rr.x;
-  float halfHeight = 0.5f * (g1.w - g1.z) + rr.y;
+  float halfHeight = 0.5f * (g1.w - g1.z);
   return vec4(c.x, 0.5f * (g1.z + g1.w), c.y, length(vec3(halfWidth, halfHeight, halfWidth)));
 }
 
@@ -157,33 +168,71 @@ CLOUDLUT_FN bool cgVisible(vec3 c, float r, vec3 eye, float far, vec4 p0, vec4 p
   return true;
 }
 
-// Particle `layer` of cell (ring, ix, iz) of cloud amount c and weight w: position jittered and
-// rotated by a hash of the cell's world coordinates (stable as the camera moves); higher layers
-// are smaller (narrow tops, wide bases); density and size fade with w.
+// A uniformly distributed unit quaternion (x, y, z, w) from three numbers in [0, 1) (Shoemake's
+// subgroup method: q = (√(1−u0) sin 2πu1, √(1−u0) cos 2πu1, √u0 sin 2πu2, √u0 cos 2πu2)).
+CLOUDLUT_FN vec4 cgRandomRotation(float u0, float u1, float u2) {
+  float a = sqrt(1.0f - u0);
+  float b = sqrt(u0);
+  float t1 = 6.28318530718f * u1;
+  float t2 = 6.28318530718f * u2;
+  return vec4(a * sin(t1), a * cos(t1), b * sin(t2), b * cos(t2));
+}
+
+// The rotation matrix of the unit quaternion q = (x, y, z, w) (columns).
+CLOUDLUT_FN mat3 cgRotationMatrix(vec4 q) {
+  float x = q.x;
+  float y = q.y;
+  float z = q.z;
+  float w = q.w;
+  return mat3(vec3(1.0f - 2.0f * (y * y + z * z), 2.0f * (x * y + w * z), 2.0f * (x * z - w * y)),
+              vec3(2.0f * (x * y - w * z), 1.0f - 2.0f * (x * x + z * z), 2.0f * (y * z + w * x)),
+              vec3(2.0f * (x * z + w * y), 2.0f * (y * z - w * x), 1.0f - 2.0f * (x * x + y * y)));
+}
+
+// Density of the cloud at amount c relative to its core [0, 1]: the edge density e = g4.w rising
+// smoothly to 1 where the amount reaches 0.6, so a cloud's edge particles are thin and its core
+// dense.
+CLOUDLUT_FN float cgDensityRamp(float c, vec4 g4) { return mix(g4.w, 1.0f, smoothstep(0.0f, 0.6f, c)); }
+
+// Particle `layer` of cell (ring, ix, iz) of cloud amount c and weight w. Position, size and the
+// reference particle's rotation come from a hash of the cell's world coordinates (stable as the
+// camera moves). The bottom layer rests on the cloud base (flat bases); higher layers are
+// smaller by the top taper g4.z (heaped, cauliflower tops); no particle leaves [base, top].
+// Density: ρ = density scale · ramp(c) · r₀ / R · w, r₀ the radius the particle would have in
+// ring 0 (the same relative size), R the tables' reference radius.
 CLOUDLUT_FN CgParticle cgParticle(int ring, int ix, int iz, int layer, float c, float w, vec4 g0, vec4 g1,
-                                  vec4 g2, vec4 g3) {
+                                  vec4 g2, vec4 g3, vec4 g4) {
   uint h = cgHash3(ix, iz, uint(g3.z) ^ (uint(ring) * 0x9e3779b9u) ^ (uint(layer) * 0x85ebca6bu));
   float u0 = cgUnit(h);
   float u1 = cgUnit(cgHash(h ^ 0x1u));
   float u2 = cgUnit(cgHash(h ^ 0x2u));
   float u3 = cgUnit(cgHash(h ^ 0x3u));
-  float u4 = cgUnit(cgHash(h ^ 0x4u));
   float s = cgCellSize(ring, g0);
-  vec2 xz = cgCellCentre(ring, ix, iz, g0) + (vec2(u0, u1) - vec2(0.5f)) * (g3.x * s);
-  float layers = g0.w;
-  float spacing = (g1.w - g1.z) / layers;
-  float y = g1.z + (float(layer) + 0.5f + 0.5f * (u2 - 0.5f)) * spacing;
-  float taper = 1.0f - 0.45f * float(layer) / max(layers - 1.0f, 1.0f);
-  float lod = 0.5f + 0.5f * w;
-  float r = s * mix(g2.x, g2.y, u3) * taper * mix(0.6f, 1.0f, c) * lod;
-  float rv = max(r * g2.z, 0.6f * spacing * taper * lod);
-  float density = g1.y * mix(0.5f, 1.0f, c) * (r / CG_REFERENCE_RADIUS) * w;
-  // member by member: C++ compilers without parenthesised aggregate initialisation accept it too
+  int count = cgLayerCount(c, g0, g4);
+  float topness = float(layer) / max(float(count) - 1.0f, 1.0f);  // 0 bottom … 1 top of this column
+  float taper = 1.0f - g4.z * topness;
+  // Tops of tall columns draw in toward the cell centre (domes), bases spread.
+  float spread = g3.x * mix(1.0f, 0.6f, topness);
+  vec2 xz = cgCellCentre(ring, ix, iz, g0) + (vec2(u0, u1) - vec2(0.5f)) * (spread * s);
+  float thickness = g1.w - g1.z;
+  float spacing = thickness / g0.w;
+  float rel = mix(g2.x, g2.y, u3) * taper * mix(0.7f, 1.0f, c);
+  float r = s * rel;
+  float want = max(r * g2.z, 0.6f * spacing * taper);
+  float rv;
+  float y;
+  if (layer == 0) {
+    rv = min(want, 0.5f * thickness);
+    y = g1.z + rv;  // flat base
+  } else {
+    y = g1.z + (float(layer) + 0.5f + 0.4f * (u2 - 0.5f)) * spacing;
+    rv = max(min(want, min(y - g1.z, g1.w - y)), 1e-3f * spacing);
+  }
   CgParticle p;
   p.centre = vec3(xz.x, y, xz.y);
   p.radii = vec3(r, rv, r);
-  p.yaw = u4 * 6.28318530718f;
-  p.density = density;
+  p.noise = cgRandomRotation(cgUnit(cgHash(h ^ 0x5u)), cgUnit(cgHash(h ^ 0x6u)), cgUnit(cgHash(h ^ 0x7u)));
+  p.density = g1.y * cgDensityRamp(c, g4) * (g0.x * rel / g4.x) * w;
   p.weight = w;
   return p;
 }
