@@ -18,7 +18,8 @@ inline constexpr int kMaxImageSide = 16384;
 // (at least kLightTiles × kLightTiles tiles, more for many particles; render/LightOcclusion.h).
 inline constexpr float kOcclusionXi = 0.05f;
 inline constexpr int kLightTiles = 64;
-// Volume blending: segments composited exactly per pixel (render/VolumeResolve.h), and the
+// Volume blending: segments composited exactly per chunk of a pixel's depth-ordered list
+// (render/VolumeResolve.h; pixels with more take ⌈count / kMaxSegmentsPerPixel⌉ chunks), and the
 // default size of the fragment node pool per pixel of the particle buffer.
 inline constexpr int kMaxSegmentsPerPixel = 32;
 inline constexpr int kDefaultFragmentsPerPixel = 16;

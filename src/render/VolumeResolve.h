@@ -4,9 +4,11 @@
 // image of list heads; shaders/volume_fragments.glsl) and their exact resolve
 // (shaders/volume_resolve.comp.glsl): each pixel's segments are cut at every entry and exit,
 // inside each piece the extinctions add and the colours combine weighted by extinction, and the
-// pieces are composited front to back. At most kMaxSegmentsPerPixel segments per pixel (the
-// nearest) are composited exactly; farther ones, and the fragments that found no room in the pool
-// (alpha-blended by the particle pass), are composited behind them.
+// pieces are composited front to back. The segments are taken in depth order (a total order:
+// ties by the nodes' other words) in chunks of kMaxSegmentsPerPixel, each chunk composited exactly
+// and the chunks front to back, so the result does not depend on the order the fragments arrived
+// in; the fragments that found no room in the pool (alpha-blended by the particle pass, in
+// arrival order) are composited behind them.
 //
 // Tiles: the node pool of one shader storage block holds the lists of one screen tile at a time.
 // The buffer is cut into bands (or, when one row does not fit, runs of pixels) of at most

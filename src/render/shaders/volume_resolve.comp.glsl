@@ -11,9 +11,14 @@
 // Preceded by volume_fragments.glsl and the defines of render/VolumeResolve.cpp: MAX_SEGMENTS
 // (kMaxSegmentsPerPixel) and GROUP_SIDE (work groups of GROUP_SIDE² pixels).
 //
-// Capacity: at most MAX_SEGMENTS segments per pixel are composited exactly (the nearest ones);
-// farther ones, and fragments that found no room in the node pool (accumulated by the particle
-// pass into the colour image with plain alpha blending, unsorted), are composited behind them.
+// Order: the segments are taken in chunks of at most MAX_SEGMENTS, nearest first, in the total
+// order of compareKeys (entry distance, then the node's other words): the first chunk is the
+// MAX_SEGMENTS nearest, each further pass over the list takes the next MAX_SEGMENTS after the
+// last key taken. Each chunk is composited exactly as above, the chunks front to back (overlap
+// between chunks is treated as one behind the other), then the fragments that found no room in
+// the node pool (accumulated by the particle pass into the colour image with plain alpha
+// blending). The result depends on the set of segments only, not on the order in which the
+// particle pass pushed them; a pixel with L segments walks its list ⌈L / MAX_SEGMENTS⌉ times.
 
 layout(local_size_x = GROUP_SIDE, local_size_y = GROUP_SIDE) in;
 
@@ -23,6 +28,7 @@ uniform ivec2 uOrigin;  // the tile's first pixel (render/VolumeResolve.h: tiles
 uniform ivec2 uEnd;     // one past its last pixel
 
 float seg_a[MAX_SEGMENTS];
+uint seg_node[MAX_SEGMENTS];
 float seg_b[MAX_SEGMENTS];
 float seg_k[MAX_SEGMENTS];
 vec3 seg_kc[MAX_SEGMENTS];
@@ -34,51 +40,78 @@ float opacityRatio(float tau) { return tau < 1e-4f ? 1.0f + 0.5f * tau : tau / (
 // (1 − e^{−x}) / x, stable at x → 0.
 float expRatio(float x) { return x < 1e-4f ? 1.0f - 0.5f * x : (1.0f - exp(-x)) / x; }
 
-void main() {
-  ivec2 px = uOrigin + ivec2(gl_GlobalInvocationID.xy);
-  if (px.x >= uEnd.x || px.y >= uEnd.y) return;
-  vec4 overflow = imageLoad(uColor, px);
+// The total order of segments: −1, 0 or +1 as segment (aA, node nA) comes before, ties with or
+// comes after (aB, nB). By entry distance a (world units), then the words of the nodes (exit, τ,
+// radiance) as unsigned integers: nodes that tie hold the same segment, so which of them is taken
+// first changes nothing.
+int compareKeys(float aA, uint nA, float aB, uint nB) {
+  if (aA != aB) return aA < aB ? -1 : 1;
+  if (nA == nB) return 0;
+  uint baseA = nA * uint(FRAGMENT_NODE_WORDS);
+  uint baseB = nB * uint(FRAGMENT_NODE_WORDS);
+  for (uint w = 1u; w < 6u; ++w) {
+    uint x = nodes[baseA + w];
+    uint y = nodes[baseB + w];
+    if (x != y) return x < y ? -1 : 1;
+  }
+  return 0;
+}
+
+// Fills seg_a / seg_node with the (at most MAX_SEGMENTS) first segments of the list at `head`,
+// in key order, that come after the bound: after key (boundA, boundNode), or tying with it
+// beyond the first `boundTaken` such ties (those were taken already). Returns the count; `more`
+// tells whether segments after them are left.
+int selectChunk(uint head, bool bounded, float boundA, uint boundNode, int boundTaken, out bool more) {
+  more = false;
   int n = 0;
-  vec3 tailC = vec3(0.0f);
-  float tailT = 1.0f;
-  uint node = imageLoad(uHeads, px).x;
-  bool truncated = false;
+  int tiesSeen = 0;
+  uint node = head;
   for (int guard = 0; node != FRAGMENT_LIST_END && guard < 1000000; ++guard) {
-    vec3 span = fragmentSpan(node);
-    float a = span.x;
-    float b = span.y;
-    float tau = span.z;
-    vec3 r = fragmentRadiance(node);
+    float a = uintBitsToFloat(nodes[node * uint(FRAGMENT_NODE_WORDS)]);
+    uint self = node;
     node = fragmentNext(node);
-    b = max(b, a + max(1e-6f * abs(a), 1e-9f));
-    int slot = n;
-    if (n == MAX_SEGMENTS) {
-      truncated = true;
-      int far = 0;
-      for (int k = 1; k < MAX_SEGMENTS; ++k)
-        if (seg_a[k] > seg_a[far]) far = k;
-      if (a >= seg_a[far]) {  // the new one is the farthest: to the tail
-        tailC += tailT * r;
-        tailT *= exp(-tau);
-        continue;
+    if (bounded) {
+      int c = compareKeys(a, self, boundA, boundNode);
+      if (c < 0) continue;
+      if (c == 0) {
+        ++tiesSeen;
+        if (tiesSeen <= boundTaken) continue;
       }
-      // Evict the farthest stored segment to the tail.
-      float evictedTau = seg_k[far] * (seg_b[far] - seg_a[far]);
-      tailC += tailT * seg_kc[far] * (seg_b[far] - seg_a[far]) / opacityRatio(evictedTau);
-      tailT *= exp(-evictedTau);
-      slot = far;
+    }
+    int j = n;
+    if (n == MAX_SEGMENTS) {
+      more = true;
+      if (compareKeys(a, self, seg_a[n - 1], seg_node[n - 1]) >= 0) continue;
+      j = n - 1;  // the last one drops out
     } else {
       ++n;
     }
-    float len = b - a;
-    seg_a[slot] = a;
-    seg_b[slot] = b;
-    seg_k[slot] = tau / len;
-    seg_kc[slot] = r * (opacityRatio(tau) / len);  // κ·C = (τ/len) · R / (1 − e^{−τ})
+    while (j > 0 && compareKeys(a, self, seg_a[j - 1], seg_node[j - 1]) < 0) {
+      seg_a[j] = seg_a[j - 1];
+      seg_node[j] = seg_node[j - 1];
+      --j;
+    }
+    seg_a[j] = a;
+    seg_node[j] = self;
   }
-  if (truncated) atomicAdd(truncatedPixels, 1u);
+  return n;
+}
 
-  // Events: entry (index +k+1) and exit (−k−1), sorted by distance (insertion sort).
+// Composites the n selected segments exactly (the header's pieces): their radiance, and in .a
+// their transmittance.
+vec4 compositeChunk(int n) {
+  for (int k = 0; k < n; ++k) {
+    vec3 span = fragmentSpan(seg_node[k]);
+    vec3 r = fragmentRadiance(seg_node[k]);
+    float a = span.x;
+    float b = max(span.y, a + max(1e-6f * abs(a), 1e-9f));
+    float len = b - a;
+    seg_b[k] = b;
+    seg_k[k] = span.z / len;
+    seg_kc[k] = r * (opacityRatio(span.z) / len);  // κ·C = (τ/len) · R / (1 − e^{−τ})
+  }
+  // Events: entry (index +k+1) and exit (−k−1), sorted by distance (insertion sort); k is the
+  // rank in key order, so ties fall the same way whatever the list order.
   int m = 0;
   for (int k = 0; k < n; ++k) {
     ev_t[m] = seg_a[k];
@@ -130,8 +163,40 @@ void main() {
       }
     }
   }
-  color += transmittance * tailC;
-  transmittance *= tailT;
+  return vec4(color, transmittance);
+}
+
+void main() {
+  ivec2 px = uOrigin + ivec2(gl_GlobalInvocationID.xy);
+  if (px.x >= uEnd.x || px.y >= uEnd.y) return;
+  vec4 overflow = imageLoad(uColor, px);
+  uint head = imageLoad(uHeads, px).x;
+  vec3 color = vec3(0.0f);
+  float transmittance = 1.0f;
+  bool bounded = false;
+  float boundA = 0.0f;
+  uint boundNode = 0u;
+  int boundTaken = 0;
+  bool more = true;
+  int chunks = 0;
+  for (; more && chunks < 1000000 / MAX_SEGMENTS; ++chunks) {
+    int n = selectChunk(head, bounded, boundA, boundNode, boundTaken, more);
+    if (n == 0) break;
+    vec4 piece = compositeChunk(n);
+    color += transmittance * piece.rgb;
+    transmittance *= piece.a;
+    // The new bound: the last key taken, and how many of its ties are taken so far.
+    int ties = 1;
+    while (ties < n && compareKeys(seg_a[n - 1 - ties], seg_node[n - 1 - ties], seg_a[n - 1], seg_node[n - 1]) == 0)
+      ++ties;
+    if (bounded && ties == n && compareKeys(seg_a[n - 1], seg_node[n - 1], boundA, boundNode) == 0)
+      ties += boundTaken;
+    bounded = true;
+    boundA = seg_a[n - 1];
+    boundNode = seg_node[n - 1];
+    boundTaken = ties;
+  }
+  if (chunks > 1) atomicAdd(truncatedPixels, 1u);
   color += transmittance * overflow.rgb;
   transmittance *= overflow.a;
   imageStore(uColor, px, vec4(color, transmittance));
