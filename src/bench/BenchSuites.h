@@ -31,6 +31,8 @@ void benchTableLayout(BenchReport& report, const BenchOptions& options);
 // Renderer II: cloudscapes per quality preset and blend mode, ms per stage (generation,
 // occlusion, shading + blending, upscale) and frame-to-frame stability (RenderBench.cpp).
 void benchRender(BenchReport& report, const BenchOptions& options);
+// Of those, only the rows of time against particle count (1e4, 1e5, 1e6 explicit particles).
+void benchRenderParticleCount(BenchReport& report, const BenchOptions& options);
 
 // Atmosphere (AtmosphereBench.cpp): the tables' bake time on 2 threads, and the transmittance,
 // single-scattered and all-orders sky against the brute-force reference (AtmosphereComparison.h).

@@ -125,7 +125,7 @@ void benchParticleCount(BenchReport& report, const BenchOptions& options, render
     }
     for (const auto& [n, st] : measured) {
       char note[200];
-      std::snprintf(note, sizeof note, "%s; time / time at 1e5 %.2f; upload %.0f ms, shading %.0f ms, %zu tile nodes dropped",
+      std::snprintf(note, sizeof note, "%s; time / time at 1e5 %.2f; upload %.0f ms, shading %.0f ms, %zu cover entries dropped",
                     lighting == render::LightingModel::Seed ? "seed: per-particle occlusion (light-space tiles)"
                                                             : "cloud: sun optical-depth volume",
                     at1e5 > 0 ? st.occlusionSeconds / at1e5 : 0.0, 1e3 * st.uploadSeconds, 1e3 * st.renderSeconds,
@@ -267,6 +267,13 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
   }
   benchParticleCount(report, options, renderer);
   reportProgress(options.progress, "bench: render", 1.0);
+}
+
+void benchRenderParticleCount(BenchReport& report, const BenchOptions& options) {
+  const io::LutSet luts = benchLuts();
+  const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
+  render::Renderer renderer(*context, luts);
+  benchParticleCount(report, options, renderer);
 }
 
 }  // namespace cloudlut::bench

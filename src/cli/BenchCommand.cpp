@@ -17,15 +17,15 @@ int runBench(int argc, char** argv) {
   cxxopts::Options options("cloudlut bench", "Measure speed and accuracy; write OUT/bench.csv.");
   options.add_options()
     ("out", "output directory", cxxopts::value<std::string>()->default_value("out/bench"))
-    ("suite", "suites to run: optical-depth, scattering, tables, ground-truth, render, atmosphere, all", cxxopts::value<std::string>()->default_value("all"))
+    ("suite", "suites to run: optical-depth, scattering, tables, ground-truth, render, render-count (only its particle-count rows), atmosphere, all", cxxopts::value<std::string>()->default_value("all"))
     ("quick", "reduced resolutions for a fast look")
     ("threads", "worker threads (0 = all cores)", cxxopts::value<int>()->default_value("0"))
     ("quiet", "no progress output");
   cxxopts::ParseResult args;
   if (!parseOptions(options, argc, argv, args)) return kExitOk;
   const std::string suite = args["suite"].as<std::string>();
-  const std::set<std::string> known{"optical-depth", "scattering", "tables", "ground-truth", "render", "atmosphere", "all"};
-  if (!known.count(suite)) throw UsageError("--suite: unknown suite '" + suite + "' (optical-depth, scattering, tables, ground-truth, render, atmosphere, all)");
+  const std::set<std::string> known{"optical-depth", "scattering", "tables", "ground-truth", "render", "render-count", "atmosphere", "all"};
+  if (!known.count(suite)) throw UsageError("--suite: unknown suite '" + suite + "' (optical-depth, scattering, tables, ground-truth, render, render-count, atmosphere, all)");
   const std::filesystem::path out = args["out"].as<std::string>();
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
@@ -42,6 +42,7 @@ int runBench(int argc, char** argv) {
   if (suite == "tables" || suite == "all") bench::benchTableLayout(report, opts);
   if (suite == "ground-truth" || suite == "all") bench::benchGroundTruth(report, opts, out);
   if (suite == "render" || suite == "all") bench::benchRender(report, opts);
+  if (suite == "render-count") bench::benchRenderParticleCount(report, opts);
   if (suite == "atmosphere" || suite == "all") bench::benchAtmosphere(report, opts);
   finishTtyProgress();
   report.writeCsv(out / "bench.csv");
