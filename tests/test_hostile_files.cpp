@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "core/Errors.h"
 #include "io/ExrImage.h"
@@ -160,17 +161,22 @@ TEST_CASE("fault 7: a re-bake killed at any moment leaves the old set or the new
 
 TEST_CASE("fault 4: a render of more particles than it can finish is refused before it starts", "[cli][hostile]") {
   TempDir tmp;
-  std::string json = "{\"particles\": [";
-  const std::size_t count = scene::kMaxRenderParticles + 1;
-  for (std::size_t i = 0; i < count; ++i) json += i ? ",{\"center\":[0,0,0],\"radii\":1}" : "{\"center\":[0,0,0],\"radii\":1}";
-  json += "]}";
-  writeFile(tmp / "big.json", json);
-  for (const char* method : {"particles", "raymarch"}) {
+  // Each method one particle over its limit: the particle method 2^20, the ray marcher 2^18.
+  for (const auto& [method, count] : {std::pair<std::string, std::size_t>{"raymarch", scene::kMaxRayMarchParticles + 1},
+                                      std::pair<std::string, std::size_t>{"particles", scene::kMaxRenderParticles + 1}}) {
     INFO(method);
+    std::string json = "{\"particles\": [";
+    json.reserve(32 * count);
+    for (std::size_t i = 0; i < count; ++i) json += i ? ",{\"center\":[0,0,0],\"radii\":1}" : "{\"center\":[0,0,0],\"radii\":1}";
+    json += "]}";
+    const fs::path file = tmp / ("big_" + method + ".json");
+    writeFile(file, json);
     // the particle method checks the count before it reads --luts; the ray marcher needs none
-    const std::string luts = std::string(method) == "particles" ? " --luts '" + (tmp / "none").string() + "'" : "";
-    const CliResult r = runCli(std::string("render --method ") + method + luts + " --particles '" + (tmp / "big.json").string() + "' --out '" + (tmp / "x.png").string() + "'");
+    const std::string luts = method == "particles" ? " --luts '" + (tmp / "none").string() + "'" : "";
+    const CliResult r = runCli("render --method " + method + luts + " --particles '" + file.string() + "' --out '" +
+                               (tmp / "x.png").string() + "'");
     CHECK(r.exitCode == 2);
-    CHECK(r.err.find("big.json: " + std::to_string(count) + " particles, more than") != std::string::npos);
+    CHECK(r.err.find(file.filename().string() + ": " + std::to_string(count) + " particles, more than") !=
+          std::string::npos);
   }
 }

@@ -46,7 +46,8 @@ int runRayMarchRender(const cxxopts::ParseResult& args) {
   s.unitOpticalRadius = static_cast<float>(medium.unitOpticalRadius());
   const scene::ViewSettings overrides = parseViewOverrides(args);
   const scene::Scene scene = scene::readScene(args["particles"].as<std::string>());
-  scene::checkRenderParticleCount(scene.particles.size(), args["particles"].as<std::string>());
+  scene::checkRenderParticleCount(scene.particles.size(), args["particles"].as<std::string>(),
+                                  scene::kMaxRayMarchParticles, "raymarch");
   s.view = scene::resolveView(scene, overrides);
 
   const auto t0 = std::chrono::steady_clock::now();

@@ -247,11 +247,11 @@ Scene readScene(const std::filesystem::path& path) {
   return parseScene(document, path.string());
 }
 
-void checkRenderParticleCount(std::size_t count, const std::string& source) {
-  if (count > kMaxRenderParticles)
-    throw UsageError(source + ": " + std::to_string(count) + " particles, more than the " +
-                     std::to_string(kMaxRenderParticles) +
-                     " one render takes (the occlusion pass grows about as N^2.8); split the scene");
+void checkRenderParticleCount(std::size_t count, const std::string& source, std::size_t limit,
+                              const std::string& method) {
+  if (count > limit)
+    throw UsageError(source + ": " + std::to_string(count) + " particles, more than the " + std::to_string(limit) +
+                     " one render of --method " + method + " takes; split the scene");
 }
 
 View resolveView(const Scene& scene, const ViewSettings& commandLine) {

@@ -91,12 +91,17 @@ struct View {
   Lighting lighting;
 };
 
-// The most particles one render takes (`cloudlut render`, both methods). The particle
-// renderer's light-space occlusion pass grows about as N^2.8 (1e5 particles 1.3 s, 3e5 16.5 s on
-// llvmpipe); 2^18 keeps a frame near ten seconds until that pass scales better.
-inline constexpr std::size_t kMaxRenderParticles = std::size_t(1) << 18;
-// UsageError naming `source` when `count` exceeds kMaxRenderParticles.
-void checkRenderParticleCount(std::size_t count, const std::string& source);
+// The most particles one render takes. The particle method (`cloudlut render`): 2^20, what one
+// storage block of llvmpipe (128 MiB) holds of the 112-byte GPU records (1 198 372), rounded down
+// to a power of two; its passes grow about as N (1e6 particles: occlusion ≈ 5 s at 640×360,
+// docs/BENCHMARKS.md). The ray marcher (`--method raymarch`) tests every particle at every pixel
+// (time ∝ pixels · N): 2^18.
+inline constexpr std::size_t kMaxRenderParticles = std::size_t(1) << 20;
+inline constexpr std::size_t kMaxRayMarchParticles = std::size_t(1) << 18;
+// UsageError naming `source` when `count` exceeds `limit` (kMaxRenderParticles or
+// kMaxRayMarchParticles; `method` names it in the message).
+void checkRenderParticleCount(std::size_t count, const std::string& source, std::size_t limit = kMaxRenderParticles,
+                              const std::string& method = "particles");
 
 // The largest eye–target distance, and distance of the eye and the target from the origin, m: the renderers
 // work in float (a 24-bit mantissa leaves 60 m steps at 1e9 m).
