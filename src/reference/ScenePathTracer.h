@@ -30,6 +30,10 @@
 // the path weight stays 1; paths end when they leave the medium (or at maxOrder). Transmittance
 // of the camera ray (alpha = 1 − T) by ratio tracking along it.
 //
+// Finding the particles a ray crosses: a BVH over the particles' exact bounding boxes
+// (reference/ParticleBvh.h) gives the candidates in index order, so the spans, and every sum
+// and random draw that follows, are those of the loop over all particles (bruteForce).
+//
 // Determinism: pixel i draws from McRng(seed, i, 0) and is computed by one thread, so the
 // image does not depend on the number of threads.
 #include <cstdint>
@@ -69,6 +73,8 @@ struct ScenePtSettings {
   int maxOrder = 0;          // > 0: stop after this many scattering events; 0 = kMaxPathVertices
   bool jitter = false;       // sample the pixel's area (true) or its centre (false)
   double maxSeconds = 0;     // > 0: give up (WorkLimitExceeded) once the wall time passes this
+  bool bruteForce = false;   // test every particle per ray instead of the BVH's candidates
+                             // (reference/ParticleBvh.h); the same result bit for bit, slower
 };
 
 // Work limits that bound every accepted input. A path ends after kMaxPathVertices scattering
