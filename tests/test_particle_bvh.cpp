@@ -10,6 +10,8 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "support/CliRunner.h"
+#include "io/ExrImage.h"
 #include "reference/ParticleBvh.h"
 #include "reference/ScenePathTracer.h"
 #include "reference/SphereMonteCarlo.h"
@@ -112,4 +114,25 @@ TEST_CASE("particle BVH: a scene rendered through the BVH equals the brute-force
     cloudPixels += fast.pixels[i].transmittance < 0.99;
   }
   CHECK(cloudPixels > 50);   // the scene is not empty: the comparison means something
+}
+
+TEST_CASE("particle BVH: reference scene --brute-force writes the same image on the 1419-particle patch; "
+          "bench rejects an unknown scene",
+          "[reference-scene][bvh]") {
+  using namespace cloudlut::test;
+  TempDir dir;
+  const std::string scene = std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/cloudscape-patch.json";
+  const std::string common = "reference scene --particles '" + scene + "' --width 10 --height 6 --spp 2 --quiet";
+  REQUIRE(runCli(common + " --out '" + (dir / "bvh.exr").string() + "'").exitCode == 0);
+  REQUIRE(runCli(common + " --brute-force --out '" + (dir / "brute.exr").string() + "'").exitCode == 0);
+  const io::ExrImage a = io::readExrImage(dir / "bvh.exr"), b = io::readExrImage(dir / "brute.exr");
+  for (const char* c : {"R", "G", "B", "A", "stderr.G"}) CHECK(a.channel(c) == b.channel(c));
+  float alpha = 0;
+  for (const float v : a.channel("A")) alpha = std::max(alpha, v);
+  CHECK(alpha > 0.5f);  // the patch is in view
+
+  const auto bad = runCli("bench --suite ground-truth --scenes one,nope --quiet --out '" + (dir / "b").string() + "'");
+  CHECK(bad.exitCode == 2);
+  CHECK(bad.err.find("'nope'") != std::string::npos);
+  CHECK(bad.err.find("cloudscape-patch") != std::string::npos);
 }
