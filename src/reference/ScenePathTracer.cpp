@@ -261,7 +261,7 @@ RayEstimate estimateRay(const SceneMedium& medium, const SceneLight& light, cons
   McRng rng(settings.seed, stream, 0);
   std::optional<ParticleBvh> bvh;
   Scratch sc;
-  if (!settings.bruteForce) sc.bvh = &bvh.emplace(medium.particles);
+  if (!settings.bruteForce && medium.particles.size() >= kBvhMinParticles) sc.bvh = &bvh.emplace(medium.particles);
   Moments mo;
   const glm::dvec3 d = glm::normalize(direction);
   for (long long i = 0; i < samples; ++i) mo.add(tracePath(medium, light, settings, origin, d, rng, sc));
@@ -284,7 +284,7 @@ ScenePtImage renderScene(const SceneMedium& medium, const SceneLight& light, con
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   const double pixelCount = static_cast<double>(img.pixels.size());
   std::optional<ParticleBvh> bvh;
-  if (!settings.bruteForce) bvh.emplace(medium.particles);
+  if (!settings.bruteForce && medium.particles.size() >= kBvhMinParticles) bvh.emplace(medium.particles);
   tbb::parallel_for(0, tiles, [&](int tile) {
     Scratch sc;
     sc.bvh = bvh ? &*bvh : nullptr;

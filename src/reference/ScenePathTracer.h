@@ -36,6 +36,7 @@
 //
 // Determinism: pixel i draws from McRng(seed, i, 0) and is computed by one thread, so the
 // image does not depend on the number of threads.
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
@@ -74,7 +75,8 @@ struct ScenePtSettings {
   bool jitter = false;       // sample the pixel's area (true) or its centre (false)
   double maxSeconds = 0;     // > 0: give up (WorkLimitExceeded) once the wall time passes this
   bool bruteForce = false;   // test every particle per ray instead of the BVH's candidates
-                             // (reference/ParticleBvh.h); the same result bit for bit, slower
+                             // (reference/ParticleBvh.h); the same result bit for bit, slower.
+                             // Scenes of fewer than kBvhMinParticles particles always use the loop.
 };
 
 // Work limits that bound every accepted input. A path ends after kMaxPathVertices scattering
@@ -84,6 +86,11 @@ inline constexpr int kMaxPathVertices = 1000000;
 // The optical radius β·R·ρ_i of one particle above which its paths (about τ² events each) and
 // the null collisions of delta tracking cannot finish in useful time.
 inline constexpr double kMaxParticleOpticalRadius = 10000.0;
+
+// Below this many particles the loop over all of them is as fast as the BVH or faster (9
+// particles: the BVH 1.4× slower, 36: even, 40: 1.3× faster; docs/BENCHMARKS.md), so the BVH is
+// built only from here up. Either way the image is the same.
+inline constexpr std::size_t kBvhMinParticles = 32;
 
 // Thrown by renderScene when ScenePtSettings::maxSeconds passes; the message says how much was
 // done and estimates the time the whole image would need.
