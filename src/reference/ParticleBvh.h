@@ -4,9 +4,10 @@
 //
 // Each particle i is the ellipsoid x = c_i + M_i·p, |p| ≤ 1. Its axis-aligned bounding box is
 // exact: along world axis k the ellipsoid reaches c_i,k ± ‖row_k(M_i)‖ (the largest of
-// e_k·M_i·p over the unit ball), in world units. The boxes are padded by a relative 10⁻⁶ of the
-// particle's largest half-extent, far above the rounding of the exact ellipsoid test, so the
-// cull is conservative: every particle whose ellipsoid the exact test accepts is returned.
+// e_k·M_i·p over the unit ball), in world units. The boxes are padded by 10⁻⁶ of the particle's
+// largest half-extent plus 10⁻¹² of its centre's largest coordinate (world units), far above the
+// rounding of the exact ellipsoid test, so the cull is conservative: every particle whose
+// ellipsoid the exact test accepts is returned.
 //
 // The tree: binary, split at the median centroid along the longest axis of the centroid box,
 // leaves of at most kLeafSize particles; build O(N log N), deterministic (no threads).
