@@ -116,7 +116,7 @@ TEST_CASE("particle BVH: a scene rendered through the BVH equals the brute-force
   CHECK(cloudPixels > 50);   // the scene is not empty: the comparison means something
 }
 
-TEST_CASE("particle BVH: reference scene --brute-force writes the same image on the 1419-particle patch; "
+TEST_CASE("particle BVH: reference scene --brute-force writes the same image on the 1419-particle patch, and "
           "bench rejects an unknown scene",
           "[reference-scene][bvh]") {
   using namespace cloudlut::test;
