@@ -2,6 +2,8 @@
 // The suites `cloudlut bench` runs; each measures speed and accuracy against an independent
 // reference and appends rows to the report.
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "bench/BenchReport.h"
 #include "core/Progress.h"
@@ -11,6 +13,7 @@ namespace cloudlut::bench {
 struct BenchOptions {
   bool quick = false;  // reduced resolutions, for a fast look
   int threads = 0;     // the machine's cores when 0
+  std::vector<std::string> scenes;  // ground-truth: these scenes of data/bench_scenes only (empty: all)
   ProgressFn progress;
 };
 
@@ -39,7 +42,8 @@ void benchRenderParticleCount(BenchReport& report, const BenchOptions& options);
 void benchAtmosphere(BenchReport& report, const BenchOptions& options);
 
 // Ground truth (GroundTruthBench.cpp): every rendering method on data/bench_scenes, time against
-// error relative to the path-traced reference; references and LUTs cached under `out`.
+// error relative to the path-traced reference; references and LUTs cached under `out`. Throws
+// UsageError for a name in options.scenes that is not one of its scenes.
 void benchGroundTruth(BenchReport& report, const BenchOptions& options, const std::filesystem::path& out);
 
 }  // namespace cloudlut::bench

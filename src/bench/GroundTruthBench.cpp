@@ -47,9 +47,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kWidth = 96, kHeight = 64;
-const char* const kScenes[] = {"one",   "one-rho1", "one-rho4",  "backlit",   "two",
-                               "three", "cluster",  "cluster36", "cloudscape"};
+// The scenes of data/bench_scenes, each with its image size and the reference's paths per pixel
+// (full, --quick). The 1419-particle cloudscape patch is path traced at 45×30: 1536 paths per
+// pixel keep its noise under a third of the cloud model's error (at 512 it was half), and its
+// reference takes ~10 min on one core (the BVH of reference/ParticleBvh.h makes it possible).
+struct BenchScene {
+  const char* name;
+  int width, height;
+  int spp, sppQuick;
+};
+const BenchScene kScenes[] = {
+    {"one", 96, 64, 1024, 256},       {"one-rho1", 96, 64, 1024, 256},  {"one-rho4", 96, 64, 1024, 256},
+    {"backlit", 96, 64, 1024, 256},   {"two", 96, 64, 1024, 256},       {"three", 96, 64, 1024, 256},
+    {"cluster", 96, 64, 1024, 256},   {"cluster36", 96, 64, 1024, 256}, {"cloudscape", 96, 64, 1024, 256},
+    {"cloudscape-patch", 45, 30, 1536, 256},
+};
 
 fs::path findSceneDir() {
   std::vector<fs::path> candidates = {fs::current_path() / "data" / "bench_scenes"};
@@ -129,6 +141,42 @@ Errors judge(const render::Image& img, const io::ExrImage& ref) {
   return out;
 }
 
+// The path tracer's BVH against its brute-force loop (ScenePtSettings::bruteForce) on one scene:
+// a small image (24×16, 4 paths per pixel) both ways on the same threads, seconds of each and
+// whether the two images are the same bit for bit.
+BenchRow bvhSpeedRow(const std::string& name, const scene::Scene& scene, const scene::View& view, const Medium& medium,
+                     int threads) {
+  constexpr int w = 24, h = 16;
+  reference::ScenePtSettings st;
+  st.samplesPerPixel = 4;
+  double seconds[2] = {0, 0};
+  io::ExrImage img[2];
+  for (int k = 0; k < 2; ++k) {
+    st.bruteForce = k == 1;
+    reference::ReferenceSceneStats stats;
+    img[k] = reference::renderReferenceScene(scene.particles, view, medium, st, w, h, {}, &stats);
+    seconds[k] = stats.seconds;
+  }
+  bool same = true;
+  for (const char* c : {"R", "G", "B", "A"}) same = same && img[0].channel(c) == img[1].channel(c);
+  BenchRow row;
+  row.suite = "ground-truth";
+  row.method = "path-traced-brute-force";
+  row.table = name;
+  row.variant = toString(medium.model);
+  row.resolution = std::to_string(w) + "x" + std::to_string(h);
+  row.steps = st.samplesPerPixel;
+  row.threads = threads;
+  row.seconds = seconds[1];
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "every particle per ray; with the BVH %.3f s, speed-up %.2fx; images %s bit for bit (%zu particles)",
+                seconds[0], seconds[1] / std::max(seconds[0], 1e-9), same ? "equal" : "DIFFERENT",
+                scene.particles.size());
+  row.note = buf;
+  return row;
+}
+
 std::string noteOf(const reference::ImageErrors& e) {
   char buf[200];
   std::snprintf(buf, sizeof buf, "rel_rmse=%.4f nc_rel_rmse=%.4f rel_bias=%+.4f ssim=%.4f alpha_rmse=%.3g",
@@ -139,10 +187,17 @@ std::string noteOf(const reference::ImageErrors& e) {
 }  // namespace
 
 void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs::path& out) {
+  std::string known;
+  for (const BenchScene& s : kScenes) known += std::string(known.empty() ? "" : ", ") + s.name;
+  for (const std::string& name : options.scenes)
+    if (std::none_of(std::begin(kScenes), std::end(kScenes), [&](const BenchScene& s) { return name == s.name; }))
+      throw UsageError("--scenes: unknown ground-truth scene '" + name + "' (" + known + ")");
+  const auto selected = [&](const std::string& name) {
+    return options.scenes.empty() || std::find(options.scenes.begin(), options.scenes.end(), name) != options.scenes.end();
+  };
   const fs::path sceneDir = findSceneDir();
   const fs::path cache = out / "ground-truth";
   fs::create_directories(cache);
-  const int spp = options.quick ? 256 : 1024;
   const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(std::max(threads, 1)));
 
@@ -177,7 +232,10 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
 
   const int sceneCount = static_cast<int>(std::size(kScenes));
   for (int si = 0; si < sceneCount; ++si) {
-    const std::string name = kScenes[si];
+    const std::string name = kScenes[si].name;
+    if (!selected(name)) continue;
+    const int width = kScenes[si].width, height = kScenes[si].height;
+    const int spp = options.quick ? kScenes[si].sppQuick : kScenes[si].spp;
     const fs::path sceneFile = sceneDir / (name + ".json");
     const scene::Scene scene = scene::readScene(sceneFile);
     const scene::View view = scene::resolveView(scene, {});
@@ -188,7 +246,7 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
     st.seed = 1;
     const std::string key = readText(sceneFile) + "|" + toString(medium.model) + "|" + std::to_string(medium.seed) + "|" +
                             std::to_string(medium.unitOpticalRadius()) + "|" + std::to_string(spp) + "|" +
-                            std::to_string(kWidth) + "x" + std::to_string(kHeight) + "|v1";
+                            std::to_string(width) + "x" + std::to_string(height) + "|v1";
     const fs::path refPath = cache / ("reference-" + name + "-" + hex(io::fnv1a64(key)) + ".exr");
     io::ExrImage ref;
     double refSeconds = -1;
@@ -202,7 +260,7 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
       const ProgressFn progress = [&](std::string_view, double f) {
         reportProgress(options.progress, "ground-truth: " + name, f);
       };
-      ref = reference::renderReferenceScene(scene.particles, view, medium, st, kWidth, kHeight, progress, &stats);
+      ref = reference::renderReferenceScene(scene.particles, view, medium, st, width, height, progress, &stats);
       refSeconds = stats.seconds;
       ref.attributes["cloudlutSeconds"] = std::to_string(stats.seconds);
       io::writeExrImage(ref, refPath);
@@ -221,13 +279,14 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
     refRow.method = "path-traced";
     refRow.table = name;
     refRow.variant = toString(medium.model);
-    refRow.resolution = std::to_string(kWidth) + "x" + std::to_string(kHeight);
+    refRow.resolution = std::to_string(width) + "x" + std::to_string(height);
     refRow.steps = spp;
     refRow.threads = threads;
     refRow.seconds = refSeconds;
     refRow.errorMean = noise;
     refRow.note = std::string("reference; error_mean = RMS standard error (noise floor)") + (cached ? "; cached" : "");
     report.add(refRow);
+    if (name == "cloudscape-patch") report.add(bvhSpeedRow(name, scene, view, medium, threads));
 
     auto addRow = [&](const std::string& method, int stepCount, const render::Image& img, double seconds,
                       const std::string& extra) {
@@ -257,8 +316,8 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
       for (const render::LightingModel lighting : {render::LightingModel::Cloud, render::LightingModel::Seed})
         for (const render::BlendMode blend : {render::BlendMode::Alpha, render::BlendMode::Volume}) {
           render::RenderSettings rs;
-          rs.width = kWidth;
-          rs.height = kHeight;
+          rs.width = width;
+          rs.height = height;
           rs.view = view;
           rs.blend = blend;
           rs.lighting = lighting;
@@ -276,8 +335,8 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
     for (const bool adaptive : {false, true})
       for (const int n : steps) {
         render::RayMarchSettings rm;
-        rm.width = kWidth;
-        rm.height = kHeight;
+        rm.width = width;
+        rm.height = height;
         rm.view = view;
         rm.steps = n;
         rm.adaptive = adaptive;

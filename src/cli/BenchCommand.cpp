@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "bench/BenchSuites.h"
@@ -19,6 +20,7 @@ int runBench(int argc, char** argv) {
     ("out", "output directory", cxxopts::value<std::string>()->default_value("out/bench"))
     ("suite", "suites to run: optical-depth, scattering, tables, ground-truth, render, render-count (only its particle-count rows), atmosphere, all", cxxopts::value<std::string>()->default_value("all"))
     ("quick", "reduced resolutions for a fast look")
+    ("scenes", "ground-truth: only these bench scenes (comma-separated; default: all)", cxxopts::value<std::string>())
     ("threads", "worker threads (0 = all cores)", cxxopts::value<int>()->default_value("0"))
     ("quiet", "no progress output");
   cxxopts::ParseResult args;
@@ -34,6 +36,11 @@ int runBench(int argc, char** argv) {
   bench::BenchOptions opts;
   opts.quick = args.count("quick") > 0;
   opts.threads = args["threads"].as<int>();
+  if (args.count("scenes")) {
+    std::stringstream list(args["scenes"].as<std::string>());
+    for (std::string name; std::getline(list, name, ',');)
+      if (!name.empty()) opts.scenes.push_back(name);
+  }
   if (opts.threads < 0) throw UsageError("--threads must be 0 (all cores) or positive");
   opts.progress = makeTtyProgress(args.count("quiet") > 0);
   bench::BenchReport report;

@@ -37,6 +37,7 @@ int runReferenceScene(int argc, char** argv) {
     ("max-seconds", "give up (exit 1, nothing written) when the path tracing takes longer than this; 0 = no limit",
      cxxopts::value<double>()->default_value("0"))
     ("jitter", "sample each pixel's area instead of its centre (the renderers sample centres)")
+    ("brute-force", "test every particle along every ray instead of the BVH's candidates (same image, slower)")
     ("threads", "worker threads (0 = all cores)", cxxopts::value<int>()->default_value("0"))
     ("quiet", "no progress bar, no summary");
   addViewOptions(options);
@@ -57,6 +58,7 @@ int runReferenceScene(int argc, char** argv) {
   st.maxOrder = args["max-order"].as<int>();
   if (st.maxOrder < 0) throw UsageError("--max-order must be 0 (no limit) or positive");
   st.jitter = args.count("jitter") > 0;
+  st.bruteForce = args.count("brute-force") > 0;
   st.maxSeconds = args["max-seconds"].as<double>();
   if (!(st.maxSeconds >= 0.0) || !std::isfinite(st.maxSeconds)) throw UsageError("--max-seconds must be 0 (no limit) or positive");
   const int threadCount = args["threads"].as<int>();

@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
 
 #include "core/Glsl.h"
+#include "reference/ParticleBvh.h"
 
 namespace cloudlut::reference {
 
@@ -26,24 +28,25 @@ struct Span {
   glm::dvec3 o, d;  // unit-sphere origin and (unnormalised) direction: p(t) = o + t·d
 };
 
-// The ray against every particle (bounding-sphere cull, then the exact ellipsoid).
+// Per-thread scratch: the spans active on a piece, the BVH's candidate particles, and the BVH
+// (null: test every particle).
+struct Scratch {
+  std::vector<const Span*> active;
+  std::vector<std::uint32_t> candidates;
+  const ParticleBvh* bvh = nullptr;
+};
+
+// The ray against the particles: the BVH's candidates in index order (or every particle), then
+// the exact ellipsoid. Both paths test the same particles that can be hit, in the same order, so
+// the spans (and every sum over them) are the same bit for bit.
 class RaySpans {
  public:
-  RaySpans(const SceneMedium& m, const glm::dvec3& origin, const glm::dvec3& dir, double tMax = kInf) {
-    for (const SceneParticle& p : m.particles) {
-      const glm::dvec3 o = p.toParticle * (origin - p.center), d = p.toParticle * dir;
-      const double a = glm::dot(d, d), b = glm::dot(o, d), c = glm::dot(o, o) - 1.0;
-      const double disc = b * b - a * c;
-      if (disc <= 0.0 || a <= 0.0) continue;
-      const double sq = std::sqrt(disc);
-      // Stable roots of a t² + 2 b t + c = 0.
-      const double q = b >= 0 ? -(b + sq) : -(b - sq);
-      double r0 = q / a, r1 = c / q;
-      if (q == 0.0) r0 = r1 = -b / a;
-      if (r0 > r1) std::swap(r0, r1);
-      const double t0 = std::max(r0, 0.0), t1 = std::min(r1, tMax);
-      if (!(t1 > t0)) continue;
-      spans.push_back({t0, t1, m.unitOpticalRadius * p.density * std::sqrt(a), o, d});
+  RaySpans(const SceneMedium& m, const glm::dvec3& origin, const glm::dvec3& dir, Scratch& scratch, double tMax = kInf) {
+    if (scratch.bvh) {
+      scratch.bvh->candidates(origin, dir, tMax, scratch.candidates);
+      for (const std::uint32_t i : scratch.candidates) addParticle(m, m.particles[i], origin, dir, tMax);
+    } else {
+      for (const SceneParticle& p : m.particles) addParticle(m, p, origin, dir, tMax);
     }
     // Piece boundaries.
     bounds.reserve(2 * spans.size());
@@ -53,6 +56,26 @@ class RaySpans {
     }
     std::sort(bounds.begin(), bounds.end());
     bounds.erase(std::unique(bounds.begin(), bounds.end()), bounds.end());
+  }
+
+  // The exact ellipsoid test of one particle: the span of the ray inside it, if any.
+  void addParticle(const SceneMedium& m, const SceneParticle& p, const glm::dvec3& origin, const glm::dvec3& dir,
+                   double tMax) {
+    {
+      const glm::dvec3 o = p.toParticle * (origin - p.center), d = p.toParticle * dir;
+      const double a = glm::dot(d, d), b = glm::dot(o, d), c = glm::dot(o, o) - 1.0;
+      const double disc = b * b - a * c;
+      if (disc <= 0.0 || a <= 0.0) return;
+      const double sq = std::sqrt(disc);
+      // Stable roots of a t² + 2 b t + c = 0.
+      const double q = b >= 0 ? -(b + sq) : -(b - sq);
+      double r0 = q / a, r1 = c / q;
+      if (q == 0.0) r0 = r1 = -b / a;
+      if (r0 > r1) std::swap(r0, r1);
+      const double t0 = std::max(r0, 0.0), t1 = std::min(r1, tMax);
+      if (!(t1 > t0)) return;
+      spans.push_back({t0, t1, m.unitOpticalRadius * p.density * std::sqrt(a), o, d});
+    }
   }
 
   std::vector<Span> spans;
@@ -143,10 +166,11 @@ struct PathSample {
 };
 
 PathSample tracePath(const SceneMedium& m, const SceneLight& light, const ScenePtSettings& st, glm::dvec3 origin,
-                     glm::dvec3 dir, McRng& rng, std::vector<const Span*>& active) {
+                     glm::dvec3 dir, McRng& rng, Scratch& sc) {
+  std::vector<const Span*>& active = sc.active;
   PathSample out;
   {
-    const RaySpans primary(m, origin, dir);
+    const RaySpans primary(m, origin, dir, sc);
     if (primary.empty()) return out;
     out.transmittance = transmittance(m, primary, rng, active);
     const double t = freeFlight(m, primary, rng, active);
@@ -158,7 +182,7 @@ PathSample tracePath(const SceneMedium& m, const SceneLight& light, const SceneP
   for (int order = 1;; ++order) {
     out.vertices = order;
     // Next-event estimation: sunlight's first scattering at this vertex.
-    const RaySpans toSun(m, origin, l);
+    const RaySpans toSun(m, origin, l, sc);
     const double sun = phaseAt(st.first, glm::dot(dir, l)) * transmittance(m, toSun, rng, active);
     (order == 1 ? out.single : out.multiple) += sun;
     if (order >= maxOrder) {
@@ -168,7 +192,7 @@ PathSample tracePath(const SceneMedium& m, const SceneLight& light, const SceneP
     // Continue along a direction sampled from the later phase function.
     const double mu = samplePhaseCosine(st.later, rng);
     dir = rotateAround(dir, mu, 2.0 * 3.14159265358979323846 * rng.next());
-    const RaySpans next(m, origin, dir);
+    const RaySpans next(m, origin, dir, sc);
     const double t = freeFlight(m, next, rng, active);
     if (t == kInf) {
       out.sky += 1.0;  // constant sky radiance reaches this vertex unattenuated
@@ -224,7 +248,8 @@ struct Moments {
 
 double homogeneousOpticalDepth(const SceneMedium& medium, const glm::dvec3& origin, const glm::dvec3& direction,
                                double t0, double t1) {
-  const RaySpans r(medium, origin + t0 * direction, direction, t1 - t0);
+  Scratch sc;
+  const RaySpans r(medium, origin + t0 * direction, direction, sc, t1 - t0);
   double tau = 0;
   for (const auto& s : r.spans) tau += s.majorant * (s.t1 - s.t0);
   return tau;
@@ -234,10 +259,12 @@ RayEstimate estimateRay(const SceneMedium& medium, const SceneLight& light, cons
                         const glm::dvec3& origin, const glm::dvec3& direction, long long samples,
                         std::uint64_t stream) {
   McRng rng(settings.seed, stream, 0);
-  std::vector<const Span*> active;
+  std::optional<ParticleBvh> bvh;
+  Scratch sc;
+  if (!settings.bruteForce && medium.particles.size() >= kBvhMinParticles) sc.bvh = &bvh.emplace(medium.particles);
   Moments mo;
   const glm::dvec3 d = glm::normalize(direction);
-  for (long long i = 0; i < samples; ++i) mo.add(tracePath(medium, light, settings, origin, d, rng, active));
+  for (long long i = 0; i < samples; ++i) mo.add(tracePath(medium, light, settings, origin, d, rng, sc));
   return mo.estimate();
 }
 
@@ -256,8 +283,11 @@ ScenePtImage renderScene(const SceneMedium& medium, const SceneLight& light, con
   std::atomic<long long> truncated{0}, pixelsDone{0};
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   const double pixelCount = static_cast<double>(img.pixels.size());
+  std::optional<ParticleBvh> bvh;
+  if (!settings.bruteForce && medium.particles.size() >= kBvhMinParticles) bvh.emplace(medium.particles);
   tbb::parallel_for(0, tiles, [&](int tile) {
-    std::vector<const Span*> active;
+    Scratch sc;
+    sc.bvh = bvh ? &*bvh : nullptr;
     const int tx = tile % tilesX, ty = tile / tilesX;
     for (int y = ty * kTile; y < std::min(height, (ty + 1) * kTile); ++y)
       for (int x = tx * kTile; x < std::min(width, (tx + 1) * kTile); ++x) {
@@ -271,7 +301,7 @@ ScenePtImage renderScene(const SceneMedium& medium, const SceneLight& light, con
             const double jx = rng.next(), jy = rng.next();
             cameraRay(x + jx, y + jy, o, d);
           }
-          const PathSample path = tracePath(medium, light, settings, o, glm::normalize(d), rng, active);
+          const PathSample path = tracePath(medium, light, settings, o, glm::normalize(d), rng, sc);
           if (path.truncated) ++truncated;
           mo.add(path);
         }

@@ -30,8 +30,13 @@
 // the path weight stays 1; paths end when they leave the medium (or at maxOrder). Transmittance
 // of the camera ray (alpha = 1 − T) by ratio tracking along it.
 //
+// Finding the particles a ray crosses: a BVH over the particles' exact bounding boxes
+// (reference/ParticleBvh.h) gives the candidates in index order, so the spans, and every sum
+// and random draw that follows, are those of the loop over all particles (bruteForce).
+//
 // Determinism: pixel i draws from McRng(seed, i, 0) and is computed by one thread, so the
 // image does not depend on the number of threads.
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
@@ -69,6 +74,9 @@ struct ScenePtSettings {
   int maxOrder = 0;          // > 0: stop after this many scattering events; 0 = kMaxPathVertices
   bool jitter = false;       // sample the pixel's area (true) or its centre (false)
   double maxSeconds = 0;     // > 0: give up (WorkLimitExceeded) once the wall time passes this
+  bool bruteForce = false;   // test every particle per ray instead of the BVH's candidates
+                             // (reference/ParticleBvh.h); the same result bit for bit, slower.
+                             // Scenes of fewer than kBvhMinParticles particles always use the loop.
 };
 
 // Work limits that bound every accepted input. A path ends after kMaxPathVertices scattering
@@ -78,6 +86,11 @@ inline constexpr int kMaxPathVertices = 1000000;
 // The optical radius β·R·ρ_i of one particle above which its paths (about τ² events each) and
 // the null collisions of delta tracking cannot finish in useful time.
 inline constexpr double kMaxParticleOpticalRadius = 10000.0;
+
+// Below this many particles the loop over all of them is as fast as the BVH or faster (9
+// particles: the BVH 1.4× slower, 36: even, 40: 1.3× faster; docs/BENCHMARKS.md), so the BVH is
+// built only from here up. Either way the image is the same.
+inline constexpr std::size_t kBvhMinParticles = 32;
 
 // Thrown by renderScene when ScenePtSettings::maxSeconds passes; the message says how much was
 // done and estimates the time the whole image would need.
