@@ -13,6 +13,7 @@
 #include "render/VolumeResolve.h"
 #include "scene/Scene.h"
 #include "support/CliRunner.h"
+#include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
 
 using namespace cloudlut;
@@ -55,12 +56,9 @@ TEST_CASE("volume tiles: every tile's pool fits the budget and the tiles cover t
 }
 
 TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overlap", "[render][volume]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
   const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
   RenderSettings s;
   s.width = 96;
   s.height = 64;
@@ -97,12 +95,9 @@ TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overla
 }
 
 TEST_CASE("volume tiles: a 1920x1080 volume render fits the GL's storage block limit", "[render][volume]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
   const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
   RenderSettings s;
   s.width = 1920;
   s.height = 1080;
