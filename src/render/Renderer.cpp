@@ -149,7 +149,8 @@ struct Renderer::Impl {
         stats->fragmentOverflow = c.overflow;
         stats->truncatedPixels = c.truncatedPixels;
         stats->resolveSeconds = volume.resolveSeconds();
-        stats->volumeTiles = static_cast<std::size_t>(volume.tiling().count());
+        stats->volumeTiles = c.tiles;
+        stats->volumeRedrawnTiles = c.redrawnTiles;
         stats->volumePoolBytes = volume.tiling().poolBytes;
       }
     } else {
