@@ -172,7 +172,7 @@ struct Renderer::Impl {
     // --- atmosphere (issue 13, render/SkyPass.h): the sky, the ground, aerial perspective
     if (s.view.lighting.atmosphere) {
       const Stopwatch skyClock;
-      skyPass().composite(image, s, sunVolume, sun);
+      skyPass().composite(image, s, sunVolume, sun, particles.tables().laterPhaseAsymmetry());
       if (stats) stats->skySeconds = skyClock.seconds();
     }
     return image;
