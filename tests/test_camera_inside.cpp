@@ -18,6 +18,7 @@
 #include "render/Renderer.h"
 #include "scene/Scene.h"
 #include "support/BakedFixtures.h"
+#include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
 #include "support/TempDir.h"
 
@@ -26,18 +27,9 @@ using namespace cloudlut::test;
 
 TEST_CASE("camera inside a particle: the front of its chord against the path tracer", "[render][lighting][inside]") {
   constexpr int kWidth = 40, kHeight = 26;
-  TempDir tmp;
-  const Medium medium;
-  bake::OpticalDepthSettings ods;
-  ods.dims = {32, 16, 32, 16};
-  const Table4D od = bake::bakeOpticalDepth(ReferenceParticle(medium.model, medium.seed), ods);
-  const bake::ScatteringResult& sc = defaultScattering(0);
-  REQUIRE(sc.single);
-  REQUIRE(sc.multiple);
-  writeLutSet(tmp / "luts", {&od, &*sc.single, &*sc.multiple});
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  auto context = render::createHeadlessContext();
-  render::Renderer renderer(*context, luts);
+  const Medium medium;  // the defaults: noise particle, seed 1, CS g 0.9 then 0.7
+  RenderFixture rig = RenderFixture::defaultMedium(0);  // its tables, converged
+  render::Renderer& renderer = rig.renderer;
 
   const scene::Scene s = scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/cluster.json");
   // Particle 2 (centre (0.156, 0.058, 0.886), radius 0.873) holds the eye; no other one does.

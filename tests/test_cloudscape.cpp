@@ -21,6 +21,7 @@
 #include "render/GlContext.h"
 #include "render/GpuParticleRecord.h"
 #include "render/Renderer.h"
+#include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
 
 using namespace cloudlut;
@@ -162,11 +163,8 @@ TEST_CASE("cloudscape: rings double their cells, nothing beyond the far plane, s
 }
 
 TEST_CASE("cloudscape: GPU generation equals the CPU reference", "[cloudscape]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts");
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
+  RenderFixture rig = RenderFixture::synthetic();
+  Renderer& renderer = rig.renderer;
   const CloudscapeScene scene = loadCloudscape(kDefaultCloudscape);
   // The presets, and a grid of more layers than any preset (the records' identity must hold them).
   const QualityPreset tall{"tall", 32, 2, 24};
@@ -206,12 +204,10 @@ TEST_CASE("cloudscape: GPU generation equals the CPU reference", "[cloudscape]")
 }
 
 TEST_CASE("cloudscape: occlusion matches exp(-xi * sum tau) computed on the CPU", "[cloudscape]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts");
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  RenderFixture rig = RenderFixture::synthetic();
+  const io::LutSet& luts = rig.luts;
+  Renderer& renderer = rig.renderer;
   const float sigma = unitOpticalRadius(luts.tables.at("optical_depth").table);
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
   RenderSettings s;
   s.width = 64;
   s.height = 64;
@@ -341,11 +337,8 @@ TEST_CASE("cloudscape: volume blending gives exp(-total optical depth) and ignor
 }
 
 TEST_CASE("cloudscape: the default scene renders non-empty, finite, in every blend mode", "[cloudscape]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
   const CloudscapeScene scene = loadCloudscape(kDefaultCloudscape);
   RenderSettings s = cloudSettings(scene, 128, 72);
   for (BlendMode mode : {BlendMode::Volume, BlendMode::Alpha}) {

@@ -21,6 +21,7 @@
 #include "scene/CloudscapeGrid.h"
 #include "scene/SceneWriter.h"
 #include "support/CliRunner.h"
+#include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
 
 using namespace cloudlut;
@@ -208,11 +209,8 @@ TEST_CASE("cloudscape LOD: neighbouring particles turn the reference particle di
 }
 
 TEST_CASE("cloudscape LOD: ring borders do not show over a slow camera move", "[cloudscape][lod]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
   const CloudscapeScene scene = loadCloudscape(kDefaultCloudscape);
   const QualityPreset q = qualityPreset("low");
   const GridParameters g = gridParameters(scene.cloud, q);

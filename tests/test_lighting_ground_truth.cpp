@@ -20,6 +20,7 @@
 #include "render/Renderer.h"
 #include "scene/Scene.h"
 #include "support/BakedFixtures.h"
+#include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
 #include "support/TempDir.h"
 
@@ -42,18 +43,9 @@ Judged judge(const render::Image& img, const io::ExrImage& ref) {
 }  // namespace
 
 TEST_CASE("lighting: the cloud model meets the path tracer where the seed's model misses", "[render][lighting]") {
-  TempDir tmp;
   const Medium medium;  // the defaults: noise particle, seed 1, CS g 0.9 then 0.7
-  bake::OpticalDepthSettings ods;
-  ods.dims = {32, 16, 32, 16};
-  const Table4D od = bake::bakeOpticalDepth(ReferenceParticle(medium.model, medium.seed), ods);
-  const bake::ScatteringResult& sc = defaultScattering(0);
-  REQUIRE(sc.single);
-  REQUIRE(sc.multiple);
-  writeLutSet(tmp / "luts", {&od, &*sc.single, &*sc.multiple});
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  auto context = render::createHeadlessContext();
-  render::Renderer renderer(*context, luts);
+  RenderFixture rig = RenderFixture::defaultMedium(0);  // its tables, converged
+  render::Renderer& renderer = rig.renderer;
 
   struct Case {
     const char* scene;

@@ -15,6 +15,7 @@
 #include "render/GlContext.h"
 #include "render/Renderer.h"
 #include "scene/Scene.h"
+#include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
 
 using namespace cloudlut;
@@ -36,14 +37,11 @@ double relativeDifference(double value, double reference) {
 }  // namespace
 
 TEST_CASE("render: the small scene has the particles' silhouette, no NaN, and is not empty", "[render]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
   const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
   REQUIRE(scene.particles.size() >= 5);
 
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
   RenderSettings settings;
   settings.width = 128;
   settings.height = 96;
@@ -205,11 +203,8 @@ TEST_CASE("render: particles are drawn back to front", "[render]") {
 }
 
 TEST_CASE("render: degenerate geometry gives finite pixels", "[render]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts");
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
+  RenderFixture rig = RenderFixture::synthetic();
+  Renderer& renderer = rig.renderer;
   RenderSettings settings;
   settings.width = 65;  // odd: the centre pixel's ray goes exactly through the particle's pole
   settings.height = 65;
@@ -294,12 +289,9 @@ Image bilateralUpscaleReference(const Image& low, int width, int height) {
 }  // namespace
 
 TEST_CASE("render: the GPU bilateral upscale equals the filter computed on the CPU", "[render]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
   const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
   RenderSettings low;
   low.width = 48;
   low.height = 36;

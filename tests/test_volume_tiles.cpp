@@ -13,6 +13,7 @@
 #include "render/VolumeResolve.h"
 #include "scene/Scene.h"
 #include "support/CliRunner.h"
+#include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
 
 using namespace cloudlut;
@@ -55,12 +56,9 @@ TEST_CASE("volume tiles: every tile's pool fits the budget and the tiles cover t
 }
 
 TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overlap", "[render][volume]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
   const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
   RenderSettings s;
   s.width = 96;
   s.height = 64;
@@ -73,13 +71,23 @@ TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overla
   REQUIRE(whole.fragmentOverflow == 0);
   REQUIRE(whole.fragments > std::size_t(3) * 96 * 64 / 4);  // several particles deep over much of it
 
-  // Bands of 5 rows, then runs of 40 pixels within a row.
-  for (const int tilePixels : {5 * 96, 40}) {
-    INFO("tile of " << tilePixels << " pixels");
-    s.volumePoolBytes = 16.0L + 28.0L * s.fragmentsPerPixel * tilePixels;
+  // Bands of 5 rows, then runs of 40 pixels within a row; then a plan for one fragment per
+  // pixel (bands of 16 rows), which the fragment load overflows: its tiles are undone and split.
+  struct Case {
+    int tilePixels, fragmentsPerPixel;
+    std::size_t minTiles;
+    bool splits;
+  };
+  const int defaultFragments = s.fragmentsPerPixel;
+  for (const Case c : {Case{5 * 96, defaultFragments, 11, false}, Case{40, defaultFragments, 11, false},
+                       Case{96 * 16, 1, 5, true}}) {
+    INFO("tile of " << c.tilePixels << " pixels, " << c.fragmentsPerPixel << " fragments per pixel");
+    s.fragmentsPerPixel = c.fragmentsPerPixel;
+    s.volumePoolBytes = 16.0L + 28.0L * s.fragmentsPerPixel * c.tilePixels;
     RenderStats tiled;
     const Image image = renderer.render(scene.particles, s, &tiled);
-    CHECK(tiled.volumeTiles > 10);
+    CHECK(tiled.volumeTiles >= c.minTiles);
+    CHECK((tiled.volumeRedrawnTiles > 0) == c.splits);
     CHECK(tiled.fragments == whole.fragments);
     CHECK(tiled.fragmentOverflow == 0);
     CHECK(tiled.truncatedPixels == whole.truncatedPixels);
@@ -89,20 +97,17 @@ TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overla
     std::size_t distanceMismatch = 0;
     for (std::size_t i = 0; i < image.distance.size(); ++i)
       if (image.distance[i] != reference.distance[i]) ++distanceMismatch;
-    std::printf("[volume tiles] %zu tiles of %d pixels: max |tiled - untiled| %.2e\n", tiled.volumeTiles, tilePixels,
-                maxDiff);
+    std::printf("[volume tiles] %zu tiles (%zu split) of %d pixels: max |tiled - untiled| %.2e\n", tiled.volumeTiles,
+                tiled.volumeRedrawnTiles, c.tilePixels, maxDiff);
     CHECK(maxDiff <= 1e-4);
     CHECK(distanceMismatch == 0);
   }
 }
 
 TEST_CASE("volume tiles: a 1920x1080 volume render fits the GL's storage block limit", "[render][volume]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
   const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
   RenderSettings s;
   s.width = 1920;
   s.height = 1080;

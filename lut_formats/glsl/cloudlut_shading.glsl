@@ -87,6 +87,18 @@ CLOUDLUT_FN float diffuseTransmittance(float tau, float g) {
   return 1.0f / (1.0f + 0.75f * (1.0f - g) * max(tau, 0.0f));
 }
 
+// The share of the sun's irradiance (dimensionless) that gets through τ of cloud toward the
+// sun, direct and scattered together: the Eddington total transmittance of a conservative slab
+// of optical thickness τ lit at normal incidence (the slab's normal taken along the sun),
+//   T = (5/4 − ¼ e^{−τ}) / (1 + ¾(1 − g)τ),
+// 1 for τ = 0 (capped at 1: the approximation overshoots by < 0.1% for a thin cloud) and
+// ≈ (5/3)/((1 − g)τ) for a thick cloud. It lights the ground in the clouds'
+// shadow.
+CLOUDLUT_FN float slabTransmittance(float tau, float g) {
+  float t = max(tau, 0.0f);
+  return min(1.0f, (1.25f - 0.25f * exp(-t)) / (1.0f + 0.75f * (1.0f - g) * t));
+}
+
 // The cloud around a point as one homogeneous sphere (cloud scale): its diameter along the sun
 // is the optical depth of the sun-parallel column through the point, tauColumn = tauSun +
 // tauAway (toward the sun and away from it). Its density scale (dimensionless), for unit

@@ -201,9 +201,10 @@ int runRender(int argc, char** argv) {
                   1e3 * stats.generateSeconds, 1e3 * stats.occlusionSeconds, 1e3 * stats.renderSeconds,
                   1e3 * setupSeconds, context->description().c_str());
       if (settings.blend == render::BlendMode::Volume)
-        std::printf("  volume blending: %zu tile(s), pool %.1f MiB, %zu fragments, %zu overflowed (alpha-blended), "
-                    "%zu pixels over %d segments\n",
-                    stats.volumeTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0, stats.fragments,
+        std::printf("  volume blending: %zu tile(s) (%zu split for the fragment load), pool %.1f MiB, %zu fragments, "
+                    "%zu overflowed (alpha-blended), %zu pixels over %d segments\n",
+                    stats.volumeTiles, stats.volumeRedrawnTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0,
+                    stats.fragments,
                     stats.fragmentOverflow, stats.truncatedPixels, render::kMaxSegmentsPerPixel);
     }
   }

@@ -71,6 +71,7 @@ namespace cloudlut::render {
   X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                        \
   X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                  \
   X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                        \
+  X(PFNGLCLEARTEXSUBIMAGEPROC, ClearTexSubImage)                  \
   X(PFNGLTEXSTORAGE2DPROC, TexStorage2D)                          \
   X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                        \
   X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)                  \

@@ -149,7 +149,8 @@ struct Renderer::Impl {
         stats->fragmentOverflow = c.overflow;
         stats->truncatedPixels = c.truncatedPixels;
         stats->resolveSeconds = volume.resolveSeconds();
-        stats->volumeTiles = static_cast<std::size_t>(volume.tiling().count());
+        stats->volumeTiles = c.tiles;
+        stats->volumeRedrawnTiles = c.redrawnTiles;
         stats->volumePoolBytes = volume.tiling().poolBytes;
       }
     } else {
@@ -171,7 +172,7 @@ struct Renderer::Impl {
     // --- atmosphere (issue 13, render/SkyPass.h): the sky, the ground, aerial perspective
     if (s.view.lighting.atmosphere) {
       const Stopwatch skyClock;
-      skyPass().composite(image, s, sunVolume, sun);
+      skyPass().composite(image, s, sunVolume, sun, particles.tables().laterPhaseAsymmetry());
       if (stats) stats->skySeconds = skyClock.seconds();
     }
     return image;

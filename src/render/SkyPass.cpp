@@ -131,7 +131,7 @@ void SkyPass::setCommonUniforms(const ProgramUniforms& u, const RenderSettings& 
   u.set("uUp", up * tanHalf);
 }
 
-void SkyPass::composite(Image& image, const RenderSettings& s, const SunVolume& sun, bool sunBuilt) {
+void SkyPass::composite(Image& image, const RenderSettings& s, const SunVolume& sun, bool sunBuilt, float laterAsymmetry) {
   if (!hasTables()) throw std::logic_error("SkyPass::composite before setTables");
   const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   GLint64 maxBlock = 0;
@@ -173,6 +173,7 @@ void SkyPass::composite(Image& image, const RenderSettings& s, const SunVolume& 
     gl_.Uniform2i(u.location("uSize"), image.width, image.height);
     u.set("uFirstRow", 0);
     u.set("uNoDistance", kNoDistance);
+    u.set("uLaterAsymmetry", laterAsymmetry);
     sun.bind(u, kSunVolumeUnit);
     if (!sunBuilt) u.set("uSunCascades", 0);
     colour_.bind(kColourBinding);

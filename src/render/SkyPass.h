@@ -44,8 +44,9 @@ class SkyPass {
   scene::Lighting cloudLighting(const scene::Lighting& lighting, float altitude) const;
 
   // Composites `image` (the clouds: premultiplied radiance, opacity, distance) under the sky in
-  // place; `sun` (built when `sunBuilt`) shadows the ground.
-  void composite(Image& image, const RenderSettings& settings, const SunVolume& sun, bool sunBuilt);
+  // place; `sun` (built when `sunBuilt`) shadows the ground, through slabTransmittance with the
+  // clouds' later phase asymmetry `laterAsymmetry` (dimensionless).
+  void composite(Image& image, const RenderSettings& settings, const SunVolume& sun, bool sunBuilt, float laterAsymmetry);
 
   static constexpr int kSkyViewWidth = 192, kSkyViewHeight = 108;
   static constexpr int kAerialSize = 32, kAerialSlices = 32;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/Errors.h"
 #include "render/ShaderSources.h"
@@ -94,28 +95,63 @@ VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel
 
 void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawTile) {
   const std::size_t capacity = (tiling_.poolBytes - 4 * kCounterWords) / kNodeBytes;
-  for (int row = 0; row < tiling_.rows; ++row)
-    for (int column = 0; column < tiling_.columns; ++column) {
+  // The plan's tiles in row-major order, as a stack (last = next). A tile whose fragments did
+  // not all find room in the pool is drawn again as two halves along its longer side, until
+  // each part fits or is one pixel: the pool's capacity per tile is fixed, so halving the
+  // pixels doubles the room per pixel. The order of the splits depends only on the counts, so
+  // the image is the same whatever the thread count.
+  struct Rect {
+    int x0, y0, x1, y1;
+  };
+  std::vector<Rect> pending;
+  for (int row = tiling_.rows - 1; row >= 0; --row)
+    for (int column = tiling_.columns - 1; column >= 0; --column) {
       const int x0 = column * tiling_.tileWidth, y0 = row * tiling_.tileHeight;
-      const int x1 = std::min(x0 + tiling_.tileWidth, width_), y1 = std::min(y0 + tiling_.tileHeight, height_);
-      const GLuint counters[kCounterWords] = {0, static_cast<GLuint>(capacity), 0, 0};
-      pool_.write(0, sizeof counters, counters);
-      fullBarrier(gl_);
-      gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-      pool_.bind(kPoolBinding);
-      gl_.Enable(GL_SCISSOR_TEST);
-      gl_.Scissor(x0, y0, x1 - x0, y1 - y0);
-      drawTile();
-      gl_.Disable(GL_SCISSOR_TEST);
-      const Stopwatch clock;
-      resolveTile(colourTexture, x0, y0, x1, y1);
-      resolveSeconds_ += clock.seconds();
-      GLuint c[kCounterWords] = {0, 0, 0, 0};
-      pool_.read(0, sizeof c, c);
-      counts_.fragments += c[0];
-      counts_.overflow += c[2];
-      counts_.truncatedPixels += c[3];
+      pending.push_back({x0, y0, std::min(x0 + tiling_.tileWidth, width_), std::min(y0 + tiling_.tileHeight, height_)});
     }
+  while (!pending.empty()) {
+    const Rect r = pending.back();
+    pending.pop_back();
+    const GLuint counters[kCounterWords] = {0, static_cast<GLuint>(capacity), 0, 0};
+    pool_.write(0, sizeof counters, counters);
+    fullBarrier(gl_);
+    gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    pool_.bind(kPoolBinding);
+    gl_.Enable(GL_SCISSOR_TEST);
+    gl_.Scissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
+    drawTile();
+    gl_.Disable(GL_SCISSOR_TEST);
+    fullBarrier(gl_);
+    GLuint drawn[kCounterWords] = {0, 0, 0, 0};
+    pool_.read(0, sizeof drawn, drawn);
+    const int w = r.x1 - r.x0, h = r.y1 - r.y0;
+    if (drawn[2] > 0 && w * h > 1) {
+      // Undo the tile: its fallback colour (cleared as the frame was) and its lists. The
+      // distance channel is a minimum, which a second draw leaves unchanged.
+      const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+      gl_.ClearTexSubImage(colourTexture, 0, r.x0, r.y0, 0, w, h, 1, GL_RGBA, GL_FLOAT, clear);
+      gl_.ClearTexSubImage(heads_, 0, r.x0, r.y0, 0, w, h, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &kListEnd);
+      fullBarrier(gl_);
+      Rect a = r, b = r;
+      if (w >= h)
+        a.x1 = b.x0 = r.x0 + w / 2;
+      else
+        a.y1 = b.y0 = r.y0 + h / 2;
+      pending.push_back(b);
+      pending.push_back(a);
+      ++counts_.redrawnTiles;
+      continue;
+    }
+    const Stopwatch clock;
+    resolveTile(colourTexture, r.x0, r.y0, r.x1, r.y1);
+    resolveSeconds_ += clock.seconds();
+    GLuint c[kCounterWords] = {0, 0, 0, 0};
+    pool_.read(0, sizeof c, c);
+    counts_.fragments += c[0];
+    counts_.overflow += c[2];
+    counts_.truncatedPixels += c[3];
+    ++counts_.tiles;
+  }
 }
 
 void VolumeResolve::bindUnused() {

@@ -69,8 +69,10 @@ class VolumeResolve {
   // For each tile of the prepared tiling: empties the pool, binds it and the heads for the
   // particle pass (pool at binding 2, heads at image unit 0), scissors to the tile, calls
   // drawTile, then composites the tile's lists into the colour texture (RGBA32F, as prepared):
-  // in, the fragments that found no room (radiance, transmittance); out, the result. counts()
-  // then holds the sums over the tiles.
+  // in, the fragments that found no room (radiance, transmittance); out, the result. A tile
+  // whose fragments overflow the pool is undone and drawn again as two halves (down to one
+  // pixel), so the plan adapts to the fragment load and stays exact. counts() then holds the
+  // sums over the tiles.
   void run(GLuint colourTexture, const std::function<void()>& drawTile);
   // Binds a small pool and a 1×1 head image, for a particle pass that stores no fragments.
   void bindUnused();
@@ -79,6 +81,8 @@ class VolumeResolve {
     std::size_t fragments = 0;        // produced
     std::size_t overflow = 0;         // alpha-blended for want of pool room
     std::size_t truncatedPixels = 0;  // pixels with more than kMaxSegmentsPerPixel segments
+    std::size_t tiles = 0;            // tiles resolved (the plan's, and the parts of split ones)
+    std::size_t redrawnTiles = 0;     // tiles drawn, found over the pool's room and split in two
   };
   Counts counts() const { return counts_; }
   const VolumeTiling& tiling() const { return tiling_; }

@@ -17,6 +17,7 @@ uniform float uAerialMax;
 uniform ivec2 uSize;
 uniform int uFirstRow;
 uniform float uNoDistance;
+uniform float uLaterAsymmetry;  // mean cosine of the clouds' later phase function (slabTransmittance)
 
 void main() {
   int x = int(gl_GlobalInvocationID.x), row = int(gl_GlobalInvocationID.y);
@@ -34,7 +35,7 @@ void main() {
   if (ground) {
     float t = distanceToGround(uAtmosphere, r, mu);
     vec3 g = uEyePlanet + t * d;
-    float shadow = exp(-sunOpticalDepth(uEyeWorld + t * d));
+    float shadow = slabTransmittance(sunOpticalDepth(uEyeWorld + t * d), uLaterAsymmetry);
     vec3 Lg = groundRadiance(uAtmosphere, uTransmittance, uIrradiance, dot(normalize(g), uSun), shadow);
     background = inScatter + transmittanceAlongRay(uAtmosphere, uTransmittance, r, mu, t, true) * Lg;
   } else {

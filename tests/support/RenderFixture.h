@@ -1,0 +1,61 @@
+#pragma once
+// A renderer ready for a test: a scratch directory, a LUT set written into it and read back
+// through io::readLutSet (as the CLI reads one), a fresh OSMesa context and a Renderer on both.
+// Members are declared in construction order: the Renderer keeps references to the context
+// and the tables.
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "bake/OpticalDepthBaker.h"
+#include "core/Medium.h"
+#include "core/ReferenceParticle.h"
+#include "io/LutIo.h"
+#include "render/GlContext.h"
+#include "render/Renderer.h"
+#include "BakedFixtures.h"
+#include "RenderLuts.h"
+#include "TempDir.h"
+
+namespace cloudlut::test {
+
+struct RenderFixture {
+  // The synthetic set of RenderLuts.h (an optical-depth table of `model`, smooth synthetic
+  // scattering tables).
+  static RenderFixture synthetic(DensityModel model = DensityModel::Radial) {
+    return RenderFixture([model](const std::filesystem::path& dir) { writeSyntheticLutSet(dir, model); });
+  }
+
+  // The default medium's own tables, for comparisons with the path tracer: the optical depth of
+  // the default noise particle at 32×16×32×16 and the default-resolution scattering tables of
+  // `orders` (0 = converged; BakedFixtures caches the bake across tests).
+  static RenderFixture defaultMedium(int orders = 0) {
+    return RenderFixture([orders](const std::filesystem::path& dir) {
+      const Medium medium;
+      bake::OpticalDepthSettings ods;
+      ods.dims = {32, 16, 32, 16};
+      const Table4D od = bake::bakeOpticalDepth(ReferenceParticle(medium.model, medium.seed), ods);
+      const bake::ScatteringResult& sc = defaultScattering(orders);
+      if (!sc.single || !sc.multiple) throw std::runtime_error("the default scattering bake returned no table");
+      writeLutSet(dir, {&od, &*sc.single, &*sc.multiple});
+    });
+  }
+
+  TempDir tmp;
+  io::LutSet luts;
+  std::unique_ptr<render::GlContext> context;
+  render::Renderer renderer;
+
+ private:
+  template <typename Write>
+  explicit RenderFixture(Write write)
+      : luts(readWritten(tmp / "luts", write)), context(render::createHeadlessContext()), renderer(*context, luts) {}
+
+  template <typename Write>
+  static io::LutSet readWritten(const std::filesystem::path& dir, Write write) {
+    write(dir);
+    return io::readLutSet(dir);
+  }
+};
+
+}  // namespace cloudlut::test
