@@ -1,5 +1,5 @@
 // The GPU sky (render/SkyPass.h through OSMesa/llvmpipe) against the CPU: at a few of the
-// bench's check directions (bench/AtmosphereComparison.h), the centre pixel of a small frame
+// bench's check directions (bench/AtmosphereComparison.h; none with the sun's disc in view), the centre pixel of a small frame
 // looking along the direction, with no cloud in it, must match
 //   - the brute-force single scattering (src/reference, a quadrature) within the issue's 2% goal
 //     plus 1% for the sky-view table's interpolation, with --sky-orders 1;
@@ -77,7 +77,7 @@ TEST_CASE("the GPU sky matches the reference and the CPU evaluation of the same 
   const reference::AtmosphereReference ref(a);
   const glm::dvec3 position = bench::checkPosition(a);
   for (const auto* c : {&checkNamed(checks, "zenith", 30.0), &checkNamed(checks, "90 deg from sun", 30.0),
-                        &checkNamed(checks, "away from sun", 5.0), &checkNamed(checks, "toward sun", 5.0)}) {
+                        &checkNamed(checks, "away from sun", 5.0), &checkNamed(checks, "horizon", 5.0)}) {
     INFO(c->name << ", sun at " << c->sunElevationDeg << " deg");
     const glm::dvec3 single = gpuSky(renderer, a, *c, 1);
     CHECK(bench::relativeError(single, ref.singleScattering(position, c->view, c->sun, 400)) < 0.03);
