@@ -21,8 +21,9 @@ struct SkySegment {
 
 // The segment [0, tMax] (m) of the ray from radius r (m) with zenith cosine mu, the sun at zenith
 // cosine muS and at cosine nu from the ray: L = ∫ T(0, t) J(t) dt, T = exp(−∫ σt), with the
-// source J = (σs_R P_R(nu) + σs_M P_M(nu)) T_sun + msWeight · (σs_R + σs_M) Ψms (single
-// scattering, Bruneton & Neyret 2008 eq. 4; orders ≥ 2, Hillaire 2020 §5.5.2 eq. 11). The
+// source J = (σs_R P_R(nu) + σs_M P_M(nu)) T_sun + msWeight · multipleScatteringSource (single
+// scattering, Bruneton & Neyret 2008 eq. 4; orders ≥ 2, Hillaire 2020 §5.5.2 eq. 11 with the
+// Rayleigh phase applied to the field's vertical moment). The
 // segment is cut into `steps` pieces whose ends grow as (i / steps)², each integrated exactly
 // for a source and extinction constant over it (Hillaire 2015, energy-conserving integration).
 // msWeight = 0 gives single scattering only (--sky-orders 1).
@@ -46,7 +47,8 @@ CLOUDLUT_FN SkySegment integrateSkySegment(AtmosphereParameters a, AtmosphereTex
     float sM = mieScatteringAt(a, h);
     vec3 sun = transmittanceToSun(a, transmittanceTable, rt, muSt, CLOUDLUT_SUN_ANGULAR_RADIUS);
     vec3 J = (sR * pR + vec3(sM * pM)) * sun;
-    if (msWeight > 0.0f) J += msWeight * (sR + vec3(sM)) * multipleScatteringLookup(a, multipleTable, rt, muSt);
+    if (msWeight > 0.0f)
+      J += msWeight * multipleScatteringSource(a, multipleTable, rt, muSt, clamp((r * mu + t) / rt, -1.0f, 1.0f));
     vec3 stepT = exp(-sigmaT * dt);
     s.radiance += s.transmittance * J * (vec3(1.0f) - stepT) / max(sigmaT, vec3(1e-20f));
     s.transmittance *= stepT;

@@ -3,7 +3,9 @@
 // looked up. Needs cloudlut_geometry.glsl (lutTexCoord), cloudlut_atmosphere.glsl.
 //
 //   transmittance       T(r, mu) to the top of the atmosphere, RGB, 256 × 64 (x_mu, x_r);
-//   multiple scattering Ψms(r, mu_s), RGB, 32 × 32 (x_mu_s, x_r) (Hillaire 2020, §5.5.2);
+//   multiple scattering Ψms(r, mu_s) and its vertical moment, RGB, 32 × 32 × 2 (x_mu_s, x_r,
+//                       block), the blocks stacked along the texture's height (Hillaire 2020,
+//                       §5.5.2, with the moment of rayleighFromMoments);
 //   sky irradiance      E(r, mu_s) on a horizontal surface, RGB, 64 × 16 (x_mu_s, x_r).
 //
 // Every table stores node i of an axis of n nodes at the unit-range value x = i / (n − 1), the
@@ -99,34 +101,66 @@ CLOUDLUT_FN vec3 transmittanceAlongRay(AtmosphereParameters a, AtmosphereTexture
   return min(num / max(den, vec3(1e-30f)), vec3(1.0f));
 }
 
-// --- Multiple scattering and irradiance: x_mu_s = (mu_s + 1) / 2, x_r = (r − bottom) /
-// (top − bottom) (Hillaire 2020, §5.5.2, for Ψms; Bruneton 2017's irradiance texture uses
-// the same r axis).
+// --- Multiple scattering and irradiance: x_mu_s = (1 ± sqrt(|mu_s|)) / 2 (the sign of mu_s), which
+// crowds the nodes about the horizon, where twilight changes fastest (32 nodes put the two
+// nearest the horizon at mu_s = ±0.001 and the next at ±0.009; Hillaire 2020 §5.5.2 uses
+// (mu_s + 1) / 2), and x_r = (r − bottom) / (top − bottom) (Bruneton 2017's irradiance texture
+// uses the same r axis).
 
 // (x_mu_s, x_r) of (r, mu_s).
 CLOUDLUT_FN vec2 sunTableUnitRange(AtmosphereParameters a, float r, float muS) {
-  return vec2(0.5f * (muS + 1.0f), (r - a.bottomRadius) / (a.topRadius - a.bottomRadius));
+  float m = clamp(muS, -1.0f, 1.0f);
+  return vec2(0.5f * (1.0f + (m < 0.0f ? -sqrt(-m) : sqrt(m))), (r - a.bottomRadius) / (a.topRadius - a.bottomRadius));
 }
 
 // (r, mu_s) of a node at (x_mu_s, x_r).
 CLOUDLUT_FN vec2 sunTableRadiusMu(AtmosphereParameters a, vec2 x) {
-  return vec2(a.bottomRadius + x.y * (a.topRadius - a.bottomRadius), 2.0f * x.x - 1.0f);
+  float s = 2.0f * x.x - 1.0f;
+  return vec2(a.bottomRadius + x.y * (a.topRadius - a.bottomRadius), s * abs(s));
 }
 
-// Ψms(r, mu_s), sr⁻¹: radiance of orders ≥ 2 arriving at a point, per unit sun irradiance and per
-// unit scattering coefficient; the in-scattered radiance per metre is σs(h) Ψms (Hillaire 2020,
-// §5.5.2, eqs. 8–10: Ψms = L₂ / (1 − f_ms)).
-CLOUDLUT_FN vec3 multipleScatteringLookup(AtmosphereParameters a, AtmosphereTexture table, float r, float muS) {
+// A table on the (x_mu_s, x_r) grid of `width` × `height` nodes whose texture holds `blocks` such
+// grids stacked along its height; block `block` (0-based) at (r, mu_s).
+CLOUDLUT_FN vec3 sunTableLookup(AtmosphereParameters a, AtmosphereTexture table, float r, float muS, int width,
+                                int height, int block, int blocks) {
   vec2 x = sunTableUnitRange(a, r, muS);
-  return atmosphereTexture(table, vec2(lutTexCoord(x.x, float(CLOUDLUT_MULTIPLE_WIDTH)),
-                                       lutTexCoord(x.y, float(CLOUDLUT_MULTIPLE_HEIGHT))));
+  return atmosphereTexture(table, vec2(lutTexCoord(x.x, float(width)),
+                                       (float(block) + lutTexCoord(x.y, float(height))) / float(blocks)));
+}
+
+// Ψms(r, mu_s), sr⁻¹: the isotropic average (1/4π) ∫ L dω of the radiance of orders ≥ 1 arriving
+// at a point, per unit sun irradiance; the in-scattered radiance of orders ≥ 2 per metre is
+// about σs(h) Ψms (Hillaire 2020, §5.5.2, eq. 11). Block 0 of the multiple-scattering table.
+CLOUDLUT_FN vec3 multipleScatteringLookup(AtmosphereParameters a, AtmosphereTexture table, float r, float muS) {
+  return sunTableLookup(a, table, r, muS, CLOUDLUT_MULTIPLE_WIDTH, CLOUDLUT_MULTIPLE_HEIGHT, 0, 2);
+}
+
+// Its second moment in the vertical, (1/4π) ∫ L cos²θ dω (θ from the local zenith), sr⁻¹: 1/3 of
+// Ψms for a field the same from every direction. Block 1 of the multiple-scattering table.
+CLOUDLUT_FN vec3 multipleScatteringMomentLookup(AtmosphereParameters a, AtmosphereTexture table, float r, float muS) {
+  return sunTableLookup(a, table, r, muS, CLOUDLUT_MULTIPLE_WIDTH, CLOUDLUT_MULTIPLE_HEIGHT, 1, 2);
+}
+
+// Radiance the Rayleigh phase scatters out of a field of average J and vertical moment K (both
+// sr⁻¹) toward a direction of zenith cosine mu, per unit scattering coefficient, for a field the
+// same at every azimuth: ∫ L(ω) 3/(16π)(1 + (ω·v)²) dω = (3/4)[(3J − K)/2 + (3K − J)/2 · mu²]
+// (the second-moment tensor of L is diag((J − K)/2, K, (J − K)/2) · 4π). Equals J when K = J/3.
+CLOUDLUT_FN vec3 rayleighFromMoments(vec3 J, vec3 K, float mu) {
+  return 0.75f * (0.5f * (3.0f * J - K) + 0.5f * (3.0f * K - J) * (mu * mu));
+}
+
+// The in-scattered radiance of orders ≥ 2 per metre toward a direction of zenith cosine mu at
+// (r, mu_s): Rayleigh through rayleighFromMoments, Mie as if the field were isotropic (σs_M Ψms).
+CLOUDLUT_FN vec3 multipleScatteringSource(AtmosphereParameters a, AtmosphereTexture table, float r, float muS, float mu) {
+  float h = r - a.bottomRadius;
+  vec3 J = multipleScatteringLookup(a, table, r, muS);
+  vec3 K = multipleScatteringMomentLookup(a, table, r, muS);
+  return rayleighScatteringAt(a, h) * rayleighFromMoments(J, K, mu) + vec3(mieScatteringAt(a, h)) * J;
 }
 
 // Sky irradiance on a horizontal surface at (r, mu_s), per unit sun irradiance (W m⁻² per
 // W m⁻²): the integral over the upper hemisphere of the sky radiance (all orders the table was
 // baked with) times the cosine to the zenith (Bruneton & Neyret 2008, eq. 10, indirect term).
 CLOUDLUT_FN vec3 skyIrradianceLookup(AtmosphereParameters a, AtmosphereTexture table, float r, float muS) {
-  vec2 x = sunTableUnitRange(a, r, muS);
-  return atmosphereTexture(table, vec2(lutTexCoord(x.x, float(CLOUDLUT_IRRADIANCE_WIDTH)),
-                                       lutTexCoord(x.y, float(CLOUDLUT_IRRADIANCE_HEIGHT))));
+  return sunTableLookup(a, table, r, muS, CLOUDLUT_IRRADIANCE_WIDTH, CLOUDLUT_IRRADIANCE_HEIGHT, 0, 1);
 }

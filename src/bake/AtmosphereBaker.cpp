@@ -2,6 +2,8 @@
 
 #include <functional>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -11,18 +13,20 @@
 namespace cloudlut::bake {
 namespace {
 
-// A 2D RGB table over the unit ranges (x0, x1) ∈ [0, 1]²; axes 2 and 3 are single nodes.
+// A 2D RGB table over the unit ranges (x0, x1) ∈ [0, 1]², `blocks` of them along axis 2 (1 or 2;
+// block b holds a second quantity on the same grid); axis 3 is a single node.
 Table4D makeTable(const std::string& name, const char* axis0, const char* axis1, int width, int height,
-                  const std::string& meaning) {
+                  const std::string& meaning, int blocks = 1) {
   std::array<Axis, 4> axes{};
   axes[0] = Axis{.name = axis0, .unit = "unit", .min = 0.0, .max = 1.0, .size = width};
   axes[1] = Axis{.name = axis1, .unit = "unit", .min = 0.0, .max = 1.0, .size = height};
-  axes[2] = Axis{.name = "unused", .unit = "", .min = 0.0, .max = 0.0, .size = 1};
+  axes[2] = blocks == 1 ? Axis{.name = "unused", .unit = "", .min = 0.0, .max = 0.0, .size = 1}
+                        : Axis{.name = "block", .unit = "index", .min = 0.0, .max = double(blocks - 1), .size = blocks};
   axes[3] = Axis{.name = "unused", .unit = "", .min = 0.0, .max = 0.0, .size = 1};
   return Table4D(name, axes, {{"r", meaning + ", red"}, {"g", meaning + ", green"}, {"b", meaning + ", blue"}});
 }
 
-// Evaluates node(x) at every node of the table, rows in parallel.
+// Evaluates node(x) at every node of block 0 of the table, rows in parallel.
 void fill(Table4D& table, const std::function<glm::vec3(glm::vec2)>& node) {
   const int w = table.axes()[0].size, h = table.axes()[1].size;
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
@@ -36,13 +40,69 @@ void fill(Table4D& table, const std::function<glm::vec3(glm::vec2)>& node) {
   });
 }
 
+constexpr int kW = glsl::CLOUDLUT_MULTIPLE_WIDTH, kH = glsl::CLOUDLUT_MULTIPLE_HEIGHT;
+constexpr std::size_t kBlock = std::size_t(3) * kW * kH;  // floats in one W × H RGB block
+
+// One scattering order on the multiple-scattering grid: J_n and K_n in the table's two-block
+// layout (block 0 J, block 1 K) and E_n in one block.
+struct OrderArrays {
+  std::vector<float> moments = std::vector<float>(2 * kBlock, 0.0f);
+  std::vector<float> irradiance = std::vector<float>(kBlock, 0.0f);
+};
+
+// Order n from order n − 1 (`previous`, ignored when fromSun), rows in parallel.
+OrderArrays computeOrder(const glsl::AtmosphereParameters& a, const glsl::AtmosphereTexture& transmittance,
+                         const OrderArrays* previous, const AtmosphereBakeSettings& s) {
+  OrderArrays out;
+  const bool fromSun = previous == nullptr;
+  const glsl::AtmosphereTexture pm = fromSun ? transmittance : glsl::AtmosphereTexture{previous->moments.data(), kW, 2 * kH};
+  const glsl::AtmosphereTexture pe = fromSun ? transmittance : glsl::AtmosphereTexture{previous->irradiance.data(), kW, kH};
+  tbb::parallel_for(tbb::blocked_range<int>(0, kH), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (int i = 0; i < kW; ++i) {
+        const glm::vec2 x(static_cast<float>(i) / static_cast<float>(kW - 1), static_cast<float>(j) / static_cast<float>(kH - 1));
+        const glm::vec2 rm = glsl::sunTableRadiusMu(a, x);
+        const glsl::ScatteringOrder o = glsl::scatteringOrderNode(a, transmittance, pm, pe, rm.x, rm.y, s.multipleDirections,
+                                                                  s.multipleSteps, fromSun);
+        const std::size_t n = 3 * (std::size_t(j) * kW + i);
+        for (int c = 0; c < 3; ++c) {
+          out.moments[n + c] = o.average[c];
+          out.moments[kBlock + n + c] = o.moment[c];
+          out.irradiance[n + c] = o.irradiance[c];
+        }
+      }
+  });
+  return out;
+}
+
+// Ψms and its moment by orders: 1 … N one at a time, summed, plus the geometric tail beyond N.
+void fillMultipleByOrders(Table4D& table, const glsl::AtmosphereParameters& a, const glsl::AtmosphereTexture& transmittance,
+                          const AtmosphereBakeSettings& s) {
+  std::vector<float> sum(2 * kBlock, 0.0f);
+  OrderArrays last, previous;
+  for (int order = 1; order <= s.multipleOrders; ++order) {
+    OrderArrays next = computeOrder(a, transmittance, order == 1 ? nullptr : &last, s);
+    previous = std::move(last);
+    last = std::move(next);
+    for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += last.moments[k];
+  }
+  for (std::size_t k = 0; k < sum.size(); k += 3) {
+    const glm::vec3 before = s.multipleOrders > 1 ? glm::vec3(previous.moments[k], previous.moments[k + 1], previous.moments[k + 2])
+                                                  : glm::vec3(0.0f);
+    const glm::vec3 v = glsl::multipleScatteringFromOrders(glm::vec3(sum[k], sum[k + 1], sum[k + 2]),
+                                                           glm::vec3(last.moments[k], last.moments[k + 1], last.moments[k + 2]),
+                                                           before);
+    for (int c = 0; c < 3; ++c) table.data()[k + c] = v[c];
+  }
+}
+
 }  // namespace
 
 glsl::AtmosphereTexture atmosphereTexture(const Table4D& table) {
   const auto d = table.dims();
-  if (table.channelCount() != 3 || d[2] != 1 || d[3] != 1)
-    throw std::invalid_argument("table '" + table.name() + "' is not an atmosphere table (3 channels, 2 axes)");
-  return glsl::AtmosphereTexture{table.data().data(), d[0], d[1]};
+  if (table.channelCount() != 3 || d[2] > 2 || d[3] != 1)
+    throw std::invalid_argument("table '" + table.name() + "' is not an atmosphere table (3 channels, 2 axes, 1 or 2 blocks)");
+  return glsl::AtmosphereTexture{table.data().data(), d[0], d[1] * d[2]};
 }
 
 AtmosphereTables bakeAtmosphere(const glsl::AtmosphereParameters& a, const AtmosphereBakeSettings& s,
@@ -51,6 +111,7 @@ AtmosphereTables bakeAtmosphere(const glsl::AtmosphereParameters& a, const Atmos
                                {"transmittance_panels", s.transmittancePanels},
                                {"multiple_directions", s.multipleDirections},
                                {"multiple_steps", s.multipleSteps},
+                               {"multiple_orders", s.multipleOrders},
                                {"irradiance_directions", s.irradianceDirections},
                                {"irradiance_steps", s.irradianceSteps},
                                {"orders", s.orders == 1 ? nlohmann::json(1) : nlohmann::json("all")}};
@@ -67,11 +128,18 @@ AtmosphereTables bakeAtmosphere(const glsl::AtmosphereParameters& a, const Atmos
   reportProgress(progress, "atmosphere multiple scattering", 0.3);
   t.multipleScattering = makeTable("atmosphere_multiple_scattering", "x_mu_s", "x_r", glsl::CLOUDLUT_MULTIPLE_WIDTH,
                                    glsl::CLOUDLUT_MULTIPLE_HEIGHT,
-                                   "Psi_ms, radiance of orders >= 2 per unit sun irradiance and scattering coefficient (1/sr)");
-  fill(t.multipleScattering, [&](glm::vec2 x) {
-    const glm::vec2 rm = glsl::sunTableRadiusMu(a, x);
-    return glsl::multipleScatteringNode(a, transmittance, rm.x, rm.y, s.multipleDirections, s.multipleSteps);
-  });
+                                   "Psi_ms (block 0) and its vertical moment (block 1), radiance of orders >= 1 per unit sun "
+                                   "irradiance (1/sr)", 2);
+  if (s.multipleOrders > 0) {
+    fillMultipleByOrders(t.multipleScattering, a, transmittance, s);
+  } else {
+    fill(t.multipleScattering, [&](glm::vec2 x) {
+      const glm::vec2 rm = glsl::sunTableRadiusMu(a, x);
+      return glsl::multipleScatteringNode(a, transmittance, rm.x, rm.y, s.multipleDirections, s.multipleSteps);
+    });
+    // the series' field is isotropic: K = J / 3
+    for (std::size_t k = 0; k < kBlock; ++k) t.multipleScattering.data()[kBlock + k] = t.multipleScattering.data()[k] / 3.0f;
+  }
   const glsl::AtmosphereTexture multiple = atmosphereTexture(t.multipleScattering);
 
   reportProgress(progress, "atmosphere irradiance", 0.6);

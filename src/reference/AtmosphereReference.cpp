@@ -98,6 +98,16 @@ glm::dvec3 AtmosphereReference::singleScattering(const glm::dvec3& position, con
 
 AtmosphereRadiance AtmosphereReference::allOrders(const glm::dvec3& position, const glm::dvec3& view,
                                                   const glm::dvec3& sun, int paths, std::uint64_t seed) const {
+  return trace(position, view, sun, paths, seed, true);
+}
+
+AtmosphereRadiance AtmosphereReference::multipleOrders(const glm::dvec3& position, const glm::dvec3& view,
+                                                       const glm::dvec3& sun, int paths, std::uint64_t seed) const {
+  return trace(position, view, sun, paths, seed, false);
+}
+
+AtmosphereRadiance AtmosphereReference::trace(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun,
+                                              int paths, std::uint64_t seed, bool firstOrder) const {
   AtmosphereRadiance out{glm::dvec3(0.0), glm::dvec3(0.0)};
   for (int c = 0; c < 3; ++c) {
     std::mt19937_64 rng(seed * 3 + static_cast<std::uint64_t>(c));
@@ -126,7 +136,7 @@ AtmosphereRadiance AtmosphereReference::allOrders(const glm::dvec3& position, co
           const glm::dvec3 normal = glm::normalize(p);
           p = normal * bottom_;
           const double cosSun = glm::dot(normal, sun);
-          if (cosSun > 0.0) radiance += weight * albedo_[c] / kPi * cosSun * sunTransmittance(p, sun, 400)[c];
+          if (cosSun > 0.0 && (firstOrder || bounce > 0)) radiance += weight * albedo_[c] / kPi * cosSun * sunTransmittance(p, sun, 400)[c];
           weight *= albedo_[c];
           d = around(normal, std::sqrt(U(rng)), 2.0 * kPi * U(rng));
         } else {
@@ -136,7 +146,7 @@ AtmosphereRadiance AtmosphereReference::allOrders(const glm::dvec3& position, co
           weight *= (sR + sM) / sT;  // survival of absorption by Mie and ozone
           const double nuSun = glm::dot(d, sun);
           const double phase = (sR * rayleighPhase(nuSun) + sM * cornetteShanks(nuSun, g_)) / (sR + sM);
-          radiance += weight * phase * sunTransmittance(p, sun, 400)[c];
+          if (firstOrder || bounce > 0) radiance += weight * phase * sunTransmittance(p, sun, 400)[c];
           // the next direction: Rayleigh or Mie by their share, each phase by rejection (both are
           // bounded by a constant times uniform and Henyey–Greenstein respectively)
           double cosTheta;

@@ -38,6 +38,13 @@ class AtmosphereReference {
   AtmosphereRadiance allOrders(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun,
                                int paths, std::uint64_t seed) const;
 
+  // Radiance of the orders >= 2 only (light scattered at least twice, or reflected by the ground
+  // and scattered, before it reaches the camera), by the same paths without the next-event
+  // estimate at their first vertex. Adding singleScattering (a quadrature, no noise) gives all
+  // orders with the Monte Carlo noise of the multiply-scattered share alone.
+  AtmosphereRadiance multipleOrders(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun,
+                                    int paths, std::uint64_t seed) const;
+
   // Extinction and scattering coefficients at altitude h (m), m⁻¹.
   glm::dvec3 extinction(double h) const;
   glm::dvec3 rayleigh(double h) const;
@@ -49,6 +56,9 @@ class AtmosphereReference {
   double distanceToGround(const glm::dvec3& p, const glm::dvec3& d) const;
   // Transmittance from p toward the unit sun direction (0 when the ground hides it).
   glm::dvec3 sunTransmittance(const glm::dvec3& p, const glm::dvec3& sun, int panels) const;
+  // The path tracer behind allOrders (firstOrder true) and multipleOrders (false).
+  AtmosphereRadiance trace(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun, int paths,
+                           std::uint64_t seed, bool firstOrder) const;
 
   double bottom_, top_;
   glm::dvec3 rayleigh0_, ozone0_;

@@ -32,7 +32,7 @@ void deleteTexture(const GlFunctions& gl, GLuint& t) {
 
 GLuint uploadTable(const GlFunctions& gl, const GlContext& context, const Table4D& t) {
   const auto d = t.dims();
-  return createFloatTexture3D(gl, context, t.name(), d[0], d[1], 1, 3, t.data().data());
+  return createFloatTexture3D(gl, context, t.name(), d[0], d[1] * d[2], 1, 3, t.data().data());  // blocks stacked
 }
 
 void bindTexture3D(const GlFunctions& gl, const ProgramUniforms& u, const char* name, int unit, GLuint texture) {
@@ -68,8 +68,9 @@ SkyPass::~SkyPass() {
 void SkyPass::setTables(const glsl::AtmosphereParameters& atmosphere, const Table4D& transmittance,
                         const Table4D& multipleScattering, const Table4D& irradiance) {
   for (const Table4D* t : {&transmittance, &multipleScattering, &irradiance})
-    if (t->channelCount() != 3 || t->dims()[2] != 1 || t->dims()[3] != 1)
-      throw UsageError("table '" + t->name() + "' is not an atmosphere table (3 channels, 2 axes)");
+    if (t->channelCount() != 3 || t->dims()[2] != (t == &multipleScattering ? 2 : 1) || t->dims()[3] != 1)
+      throw UsageError("table '" + t->name() + "' is not this version's atmosphere table (3 channels, 2 axes, " +
+                       (t == &multipleScattering ? "2 blocks)" : "1 block)"));
   atmosphere_ = atmosphere;
   transmittance_ = transmittance;
   multiple_ = multipleScattering;
