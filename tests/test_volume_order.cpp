@@ -15,6 +15,7 @@
 #include "render/Renderer.h"
 #include "scene/Scene.h"
 #include "support/CliRunner.h"
+#include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
 
 using namespace cloudlut;
@@ -70,11 +71,8 @@ std::size_t mismatches(const std::vector<float>& a, const std::vector<float>& b)
 
 TEST_CASE("volume order: more than 32 overlapping segments resolve bit-identically in any submission order",
           "[render][volume]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
   RenderSettings s = columnSettings(10.0f);
   s.blend = BlendMode::Volume;
   // 90 spheres of radius 1.5, 0.5 apart: each ray near the axis crosses dozens of overlapping ones.
@@ -105,11 +103,8 @@ TEST_CASE("volume order: more than 32 overlapping segments resolve bit-identical
 
 TEST_CASE("volume order: a stack of 60 disjoint particles composites front to back like alpha blending",
           "[render][volume]") {
-  TempDir tmp;
-  writeSyntheticLutSet(tmp / "luts", DensityModel::Noise);
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  auto context = createHeadlessContext();
-  Renderer renderer(*context, luts);
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
   RenderSettings s = columnSettings(3.0f);
   // Spheres of radius 0.2, 0.45 apart: no two overlap, so no ray's segments do, and volume
   // blending reduces to alpha blending in depth order (seed eqs. 16–17).
