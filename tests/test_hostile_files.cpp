@@ -129,14 +129,19 @@ TEST_CASE("fault 7: a re-bake killed at any moment leaves the old set or the new
   const double bakeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   int oldSeen = 0, newSeen = 0, kills = 0;
   const int signals[] = {SIGKILL, SIGTERM, SIGINT};
-  const double fractions[] = {0.0, 0.1, 0.3, 0.5, 0.7, 0.85, 0.95, 1.0, 1.1};
+  // Fractions of the timed bake; a negative one lets the bake finish before the signal, so the
+  // new set is seen whatever the machine's load does to the bake's length.
+  const double fractions[] = {0.0, 0.1, 0.3, 0.5, 0.7, 0.85, 0.95, 1.0, -1.0};
   for (const int sig : signals)
     for (const double f : fractions) {
       INFO("signal " << sig << " at " << f << " of the bake (" << bakeMs << " ms)");
       const pid_t pid = startRebake(dir);
-      std::this_thread::sleep_for(std::chrono::microseconds(static_cast<long long>(f * bakeMs * 1000.0)));
       int status = 0;
-      if (waitpid(pid, &status, WNOHANG) != pid) {
+      if (f < 0)
+        waitpid(pid, &status, 0);
+      else
+        std::this_thread::sleep_for(std::chrono::microseconds(static_cast<long long>(f * bakeMs * 1000.0)));
+      if (f >= 0 && waitpid(pid, &status, WNOHANG) != pid) {
         kill(pid, sig);
         waitpid(pid, &status, 0);
         kills += WIFSIGNALED(status) ? 1 : 0;
@@ -151,7 +156,7 @@ TEST_CASE("fault 7: a re-bake killed at any moment leaves the old set or the new
     }
   CHECK(kills >= 9);
   CHECK(oldSeen >= 3);  // the kills landed during the bake...
-  CHECK(newSeen >= 1);  // ... and some after it finished: both outcomes were exercised
+  CHECK(newSeen >= 3);  // ... and some after it finished: both outcomes were exercised
   // Staging directories of the killed bakes are gone once a later bake ran beside them.
   REQUIRE(runCli("bake --tables optical-depth --res-od 16,8,16,8 --quiet --out '" + dir.string() + "'").exitCode == 0);
   for (const auto& e : fs::directory_iterator(tmp.path()))
