@@ -141,6 +141,21 @@ Errors judge(const render::Image& img, const io::ExrImage& ref) {
   return out;
 }
 
+// A ground-truth row of the path tracer `method` on scene `name`: its image size and paths per
+// pixel; seconds, errors and note are the caller's.
+BenchRow pathTracedRow(const std::string& method, const std::string& name, const Medium& medium, int width, int height,
+                       int spp, int threads) {
+  BenchRow row;
+  row.suite = "ground-truth";
+  row.method = method;
+  row.table = name;
+  row.variant = toString(medium.model);
+  row.resolution = std::to_string(width) + "x" + std::to_string(height);
+  row.steps = spp;
+  row.threads = threads;
+  return row;
+}
+
 // The path tracer's BVH against its brute-force loop (ScenePtSettings::bruteForce) on one scene:
 // a small image (24×16, 4 paths per pixel) both ways on the same threads, seconds of each and
 // whether the two images are the same bit for bit.
@@ -159,14 +174,7 @@ BenchRow bvhSpeedRow(const std::string& name, const scene::Scene& scene, const s
   }
   bool same = true;
   for (const char* c : {"R", "G", "B", "A"}) same = same && img[0].channel(c) == img[1].channel(c);
-  BenchRow row;
-  row.suite = "ground-truth";
-  row.method = "path-traced-brute-force";
-  row.table = name;
-  row.variant = toString(medium.model);
-  row.resolution = std::to_string(w) + "x" + std::to_string(h);
-  row.steps = st.samplesPerPixel;
-  row.threads = threads;
+  BenchRow row = pathTracedRow("path-traced-brute-force", name, medium, w, h, st.samplesPerPixel, threads);
   row.seconds = seconds[1];
   char buf[240];
   std::snprintf(buf, sizeof buf,
@@ -274,14 +282,7 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
       for (const char* c : {"stderr.R", "stderr.G", "stderr.B"}) se2 += ref.channel(c)[i] * ref.channel(c)[i];
     }
     const double noise = cloud ? std::sqrt(se2 / (3.0 * static_cast<double>(cloud))) : 0.0;
-    BenchRow refRow;
-    refRow.suite = "ground-truth";
-    refRow.method = "path-traced";
-    refRow.table = name;
-    refRow.variant = toString(medium.model);
-    refRow.resolution = std::to_string(width) + "x" + std::to_string(height);
-    refRow.steps = spp;
-    refRow.threads = threads;
+    BenchRow refRow = pathTracedRow("path-traced", name, medium, width, height, spp, threads);
     refRow.seconds = refSeconds;
     refRow.errorMean = noise;
     refRow.note = std::string("reference; error_mean = RMS standard error (noise floor)") + (cached ? "; cached" : "");
