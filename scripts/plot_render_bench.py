@@ -33,8 +33,13 @@ def main() -> int:
         return 1
     scenes = [s for s in SCENES if any(r["table"] == s for r in measured)]
     scenes += sorted({r["table"] for r in measured} - set(scenes))
-    fig, axes = plt.subplots(1, len(scenes), figsize=(4.2 * len(scenes), 4.2), squeeze=False)
-    for ax, scene in zip(axes[0], scenes):
+    cols = min(4, len(scenes))
+    rows_n = (len(scenes) + cols - 1) // cols
+    fig, axes = plt.subplots(rows_n, cols, figsize=(4.6 * cols, 4.0 * rows_n), squeeze=False)
+    flat = [ax for row in axes for ax in row]
+    for ax in flat[len(scenes):]:
+        ax.axis("off")
+    for k, (ax, scene) in enumerate(zip(flat, scenes)):
         series = defaultdict(list)
         noise = None
         for r in measured:
@@ -43,6 +48,8 @@ def main() -> int:
             if r["method"] == "path-traced":
                 noise = number(r["error_mean"])
                 continue
+            if r["method"].startswith("path-traced"):
+                continue  # the path tracer's own speed rows (BVH against brute force)
             series[r["method"]].append(r)
         for method, pts in sorted(series.items()):
             pts.sort(key=lambda r: number(r["seconds"]))
@@ -60,7 +67,8 @@ def main() -> int:
         ax.set_ylabel("RMSE vs path-traced ground truth")
         ax.set_title(scene)
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
+        if k == 0:
+            ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=110)
     return 0
