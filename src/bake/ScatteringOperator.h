@@ -42,6 +42,7 @@ class TransportStencil {
   const SphereField* field_;
   int K_ = 0;
   std::vector<Entry> entries_;  // K per (node, direction), cell-major
+  std::vector<std::uint8_t> counts_;  // points of nonzero weight per cell (packed first)
 };
 
 // K = M·T on a field, with its own scratch space for T·in.
