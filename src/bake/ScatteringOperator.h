@@ -4,7 +4,8 @@
 //   T (transport): L(x, ω) = ∫_0^{d(x, −ω)} σ e^{−σs} J(x − sω, ω) ds at every node x and direction
 //     ω, by attenuatedRayRule; J is read at the direction's own zenith node and interpolated
 //     in space (SphereField::locate). The K points of every (node, direction) ray are a
-//     stencil built once per density and reused by every order.
+//     stencil built once per density and reused by every order; points of zero weight (the
+//     far panel of a short ray) are left out of it.
 //   M (phase convolution): J'(x, ω) = Σ_ω' M(ω, ω') L(x, ω'), one dense matrix product.
 #include <cstdint>
 #include <vector>
