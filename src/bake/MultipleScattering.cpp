@@ -28,6 +28,9 @@ struct FastMultipleScattering::Shared {
 
 namespace {
 
+// Relative field total of an order below which the order loop stops (see bakeSlice).
+constexpr double kOrderTolerance = 1e-5;
+
 double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -154,22 +157,32 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
   const double tStencil = seconds(t1);
   say(0.2);
 
-  // Orders 3 … N: J_{n+1} = K·J_n, summed from J_2 on.
+  // Orders 3 … N: J_{n+1} = K·J_n, summed from J_2 on. The loop stops early once an order's
+  // field total Σ J_n (over every node and direction, J ≥ 0) falls below
+  // kOrderTolerance · Σ (J_2 + … + J_n): the orders decay geometrically (ratio q < 1, small in
+  // thin particles), so the truncated rest is below kOrderTolerance · q/(1 − q) of the sum.
   const auto t2 = std::chrono::steady_clock::now();
   const int orders = sh.settings.orders;
   std::vector<float> sum = J, next(field.size());
-  int applications = 0;
+  int applications = 0, lastOrder = 2;
   const int explicitOrders = orders > 0 ? orders : 18;
-  for (int n = 3; n <= explicitOrders; ++n) {
+  double sumTotal = total(J);
+  bool negligible = false;
+  for (int n = 3; n <= explicitOrders && !negligible; ++n) {
     K.apply(J, next);
     ++applications;
     J.swap(next);
     axpy(1.0f, J, sum);
+    lastOrder = n;
+    const double orderTotal = total(J);
+    sumTotal += orderTotal;
+    negligible = !(orderTotal > kOrderTolerance * sumTotal);
     say(0.2 + 0.6 * (n - 2) / std::max(1, explicitOrders - 2) * (orders > 0 ? 1.0 : 0.3));
   }
   nlohmann::json sliceReport;
+  sliceReport["last_order_computed"] = lastOrder;
   std::vector<float> tail;
-  if (orders <= 0) {
+  if (orders <= 0 && !negligible) {  // a negligible order leaves a negligible tail
     // Orders N+1 … ∞: (I − K) X = K·J_N (TailSolver.h).
     const CoarseCorrection B(field, transport.isotropicCoarseOperator());
     std::vector<float> b(field.size());

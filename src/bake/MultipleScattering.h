@@ -18,6 +18,8 @@
 //      ~0.2% over the whole converged sum.)
 //   M: the phase convolution, one dense matrix product over the direction grid (energy
 //      conserving by construction).
+// The order loop stops early once an order's field total is below 1e-5 of the running sum
+// (thin particles: their orders decay fast), an exact truncation up to that tolerance.
 // J_2 comes straight from the sun: the once-scattered radiance P1(−l·ω')·A(x, ω') with A the
 // closed-form-sun-path integral along each ray, on a direction grid refined toward the sun's
 // forward peak, convolved with the later phase function.

@@ -9,6 +9,9 @@ namespace cloudlut::bake {
 // in order.
 double dot(const std::vector<float>& a, const std::vector<float>& b);
 
+// Σ_i a[i] in double, in the same fixed blocks as dot.
+double total(const std::vector<float>& a);
+
 // y ← y + α·x.
 void axpy(float alpha, const std::vector<float>& x, std::vector<float>& y);
 

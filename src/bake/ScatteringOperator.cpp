@@ -44,6 +44,7 @@ TransportStencil::TransportStencil(const SphereField& field, double sigma, int p
   const DirectionGrid& dirs = field.directions();
   const int D = dirs.count(), nb = dirs.phiCount();
   entries_.resize(field.size() * static_cast<std::size_t>(K_));
+  counts_.assign(field.size(), 0);
   tbb::parallel_for(0, field.nodeCount(), [&](int s) {
     std::vector<double> ss, ww;
     const glm::dvec3 x = field.node(s);
@@ -52,16 +53,23 @@ TransportStencil::TransportStencil(const SphereField& field, double sigma, int p
       const glm::dvec3 w = dirs.direction(d);
       attenuatedRayRule(sigma, distanceToSphere(x, -w), points, ss, ww);
       const double wh = std::hypot(w.x, w.y);
-      Entry* e = &entries_[(static_cast<std::size_t>(s) * D + d) * K_];
+      const std::size_t cell = static_cast<std::size_t>(s) * D + d;
+      Entry* e = &entries_[cell * K_];
+      // Points of zero weight (the far panel of a ray shorter than its near optical depth)
+      // contribute exactly nothing: they are left out, the rest packed at the cell's start.
+      int used = 0;
       for (int k = 0; k < K_; ++k) {
+        if (!(ww[k] != 0.0)) continue;
         const FieldPoint p = field.locate(x - ss[k] * w, w, wh);
-        e[k].base = static_cast<std::uint32_t>(p.offset + static_cast<std::size_t>(ia) * nb);
+        Entry& q = e[used++];
+        q.base = static_cast<std::uint32_t>(p.offset + static_cast<std::size_t>(ia) * nb);
         for (int c = 0; c < 4; ++c) {
-          e[k].wr[c] = static_cast<float>(ww[k]) * p.wr[c];
-          e[k].wt[c] = p.wt[c];
+          q.wr[c] = static_cast<float>(ww[k]) * p.wr[c];
+          q.wt[c] = p.wt[c];
         }
-        e[k].fb = p.fb;
+        q.fb = p.fb;
       }
+      counts_[cell] = static_cast<std::uint8_t>(used);
     }
   });
 }
@@ -74,7 +82,7 @@ void TransportStencil::apply(const std::vector<float>& in, std::vector<float>& o
       const std::size_t cell = static_cast<std::size_t>(s) * D + d;
       const Entry* e = &entries_[cell * K_];
       float acc = 0.0f;
-      for (int k = 0; k < K_; ++k) accumulateField(&in[e[k].base], strideR, strideT, e[k].wr, e[k].wt, e[k].fb, acc);
+      for (int k = 0, n = counts_[cell]; k < n; ++k) accumulateField(&in[e[k].base], strideR, strideT, e[k].wr, e[k].wt, e[k].fb, acc);
       out[cell] = acc;
     }
   });
@@ -89,9 +97,10 @@ std::vector<double> TransportStencil::isotropicCoarseOperator() const {
   tbb::parallel_for(0, NS, [&](int sIdx) {
     double* row = &Kc[static_cast<std::size_t>(sIdx) * NS];
     for (int dd = 0; dd < D; ++dd) {
-      const Entry* e = &entries_[(static_cast<std::size_t>(sIdx) * D + dd) * K_];
+      const std::size_t cell = static_cast<std::size_t>(sIdx) * D + dd;
+      const Entry* e = &entries_[cell * K_];
       const double qd = q[dd] * inv4pi;
-      for (int k = 0; k < K_; ++k) {
+      for (int k = 0, n = counts_[cell]; k < n; ++k) {
         const std::size_t base = e[k].base;
         const int ir0 = static_cast<int>(base / strideR), it0 = static_cast<int>((base % strideR) / strideT);
         for (int c = 0; c < 4; ++c)

@@ -4,7 +4,8 @@
 //   T (transport): L(x, ω) = ∫_0^{d(x, −ω)} σ e^{−σs} J(x − sω, ω) ds at every node x and direction
 //     ω, by attenuatedRayRule; J is read at the direction's own zenith node and interpolated
 //     in space (SphereField::locate). The K points of every (node, direction) ray are a
-//     stencil built once per density and reused by every order.
+//     stencil built once per density and reused by every order; points of zero weight (the
+//     far panel of a short ray) are left out of it.
 //   M (phase convolution): J'(x, ω) = Σ_ω' M(ω, ω') L(x, ω'), one dense matrix product.
 #include <cstdint>
 #include <vector>
@@ -42,6 +43,7 @@ class TransportStencil {
   const SphereField* field_;
   int K_ = 0;
   std::vector<Entry> entries_;  // K per (node, direction), cell-major
+  std::vector<std::uint8_t> counts_;  // points of nonzero weight per cell (packed first)
 };
 
 // K = M·T on a field, with its own scratch space for T·in.
