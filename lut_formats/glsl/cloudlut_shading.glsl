@@ -74,6 +74,22 @@ CLOUDLUT_FN float meanScatteringFraction(float tau) {
   return 1.0f / tau - e / (1.0f - e);
 }
 
+// Mean sun transmittance J̄1 (dimensionless, the single table's quantity) of a chord of a
+// noise particle, from two estimates that each fall short where the other holds:
+//   tableSource  J̄1 of the homogeneous sphere at the chord's mean density (the table, exact
+//                for a homogeneous particle; low at the rims of an inhomogeneous one, whose
+//                thin outskirts pass more sunlight than the sphere of the same mean density);
+//   tauOwnAtMean the particle's own optical depth toward the sun at the chord's mean scattering
+//                point (the sun volume's ramp of this particle), whose e^{−τ} is the sun
+//                transmittance at one point, below the chord's mean of e^{−τ} wherever τ varies
+//                along the chord (Jensen's inequality: the mean of a convex function is at
+//                least the function of the mean).
+// Both are low estimates of the same mean, so the larger is the closer (measured against the
+// path tracer: docs/LIGHTING.md, "Single scattering").
+CLOUDLUT_FN float singleSunTransmittance(float tableSource, float tauOwnAtMean) {
+  return max(tableSource, exp(-max(tauOwnAtMean, 0.0f)));
+}
+
 // Ambient radiance per unit sky radiance of a chord of optical depth τ under a uniform sky: a
 // non-absorbing medium in an isotropic uniform field holds that field's radiance everywhere,
 // so the chord adds exactly the sky it hides, 1 − e^{−τ} (dimensionless).

@@ -106,14 +106,17 @@ void main() {
   float tauOutside = uSunlightVolume != 0 ? sunTau.x : 0.0;
   if (uSunlightVolume != 0) sunlight = exp(-tauOutside);
 
-  // Single scattering: the mean source of the homogeneous sphere of the ray's mean density,
-  // times the phase function of the physical (world-space) scattering angle, times the ray's
-  // own opacity 1 − e^{−τ} (both models).
+  // Single scattering: the mean source of the homogeneous sphere of the ray's mean density
+  // (cloud model with the sun volume: or the particle's own sun transmittance at the mean
+  // scattering point, whichever is larger, singleSunTransmittance), times the phase function of
+  // the physical (world-space) scattering angle, times the ray's own opacity 1 − e^{−τ}.
   float single = 0.0;
   if ((uTerms & 1) != 0) {
     vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleAxes, float(uSingleDims.w));
-    single = phaseFunction(uFirstPhaseKind, dot(dir, uSunDirection), uFirstPhaseParam) *
-             singleScatteringFromTable(cloudlutSample4D(uSingle, x, uSingleDims).x, tau);
+    float stored = cloudlutSample4D(uSingle, x, uSingleDims).x;
+    float source = stored <= CLOUDLUT_LOG2_SOURCE_FLOOR ? 0.0 : exp2(stored);
+    if (uLighting != 0 && uSunlightVolume != 0) source = singleSunTransmittance(source, sunTau.y - sunTau.x);
+    single = phaseFunction(uFirstPhaseKind, dot(dir, uSunDirection), uFirstPhaseParam) * chordOpacity(tau) * source;
   }
   // Multiple scattering, per unit sun irradiance, already lit (the sunlight factor included).
   //   seed:  the mean source of the particle's sphere at ρ, times the sunlight;
