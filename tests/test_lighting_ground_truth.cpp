@@ -40,6 +40,18 @@ Judged judge(const render::Image& img, const io::ExrImage& ref) {
   return {e.noiseCorrectedRelativeRmse, e.relativeBias, e.referenceNoise};
 }
 
+// The renderer's settings for one lighting model, as the bench renders it (volume-aware).
+render::RenderSettings settingsFor(const scene::View& view, int width, int height, render::LightingModel lighting) {
+  render::RenderSettings rs;
+  rs.width = width;
+  rs.height = height;
+  rs.view = view;
+  rs.blend = render::BlendMode::Volume;
+  rs.lighting = lighting;
+  rs.sunlight = render::defaultSunlight(lighting);
+  return rs;
+}
+
 }  // namespace
 
 TEST_CASE("lighting: the cloud model meets the path tracer where the seed's model misses", "[render][lighting]") {
@@ -65,14 +77,8 @@ TEST_CASE("lighting: the cloud model meets the path tracer where the seed's mode
 
     Judged j[2];
     for (const render::LightingModel lighting : {render::LightingModel::Seed, render::LightingModel::Cloud}) {
-      render::RenderSettings rs;
-      rs.width = kWidth;
-      rs.height = kHeight;
-      rs.view = view;
-      rs.blend = render::BlendMode::Volume;
-      rs.lighting = lighting;
-      rs.sunlight = render::defaultSunlight(lighting);
-      j[lighting == render::LightingModel::Cloud] = judge(renderer.render(s.particles, rs), ref);
+      j[lighting == render::LightingModel::Cloud] =
+          judge(renderer.render(s.particles, settingsFor(view, kWidth, kHeight, lighting)), ref);
     }
     std::printf("lighting ground truth %-9s ref noise %.3f  seed nc_rel_rmse %.3f bias %+.3f  cloud %.3f bias %+.3f\n",
                 c.scene, j[0].refNoise, j[0].ncRelRmse, j[0].relBias, j[1].ncRelRmse, j[1].relBias);
@@ -110,13 +116,7 @@ TEST_CASE("lighting: the backlit rim's single scattering against the path tracer
 
   double bias[2] = {0, 0};
   for (const render::LightingModel lighting : {render::LightingModel::Seed, render::LightingModel::Cloud}) {
-    render::RenderSettings rs;
-    rs.width = kRimWidth;
-    rs.height = kRimHeight;
-    rs.view = view;
-    rs.blend = render::BlendMode::Volume;
-    rs.lighting = lighting;
-    rs.sunlight = render::defaultSunlight(lighting);
+    render::RenderSettings rs = settingsFor(view, kRimWidth, kRimHeight, lighting);
     rs.terms = render::kTermSingle;
     const render::Image img = rig.renderer.render(s.particles, rs);
     double sumRender = 0, sumRef = 0;
