@@ -4,10 +4,13 @@
 // setTables). Per frame, on the GPU:
 //   sky view     192 × 108 in-scattered radiance toward every direction from the camera
 //                (shaders/sky_view.comp.glsl; Hillaire 2020 §5.3);
-//   aerial       32 × 32 × 32 in-scattering and transmittance over the camera's frustum to
-//                100 km (shaders/sky_aerial.comp.glsl; Hillaire 2020 §5.4);
+//   aerial       32 × 32 × 32 in-scattering, its single scattering of sunlight and transmittance
+//                over the camera's frustum to 100 km (shaders/sky_aerial.comp.glsl; Hillaire
+//                2020 §5.4);
 //   composite    sky, sun disc, ground lit through the clouds' shadow, aerial perspective on
-//                the clouds (shaders/sky_composite.comp.glsl).
+//                the clouds, light shafts: the clouds' shadow on the air, by a march of
+//                kShaftSteps pieces per pixel through the sun volume (shaders/sky_shafts.glsl;
+//                seed §5.6) (shaders/sky_composite.comp.glsl).
 // The clouds' sunlight and ambient come from the same tables (cloudLighting).
 #include <array>
 #include <string>
@@ -51,6 +54,7 @@ class SkyPass {
   static constexpr int kSkyViewWidth = 192, kSkyViewHeight = 108;
   static constexpr int kAerialSize = 32, kAerialSlices = 32;
   static constexpr float kAerialMaxMetres = 100e3f;
+  static constexpr int kShaftSteps = 32;  // pieces of a pixel's ray through the sun volume
 
  private:
   void setCommonUniforms(const ProgramUniforms& u, const RenderSettings& s) const;
@@ -60,7 +64,7 @@ class SkyPass {
   glsl::AtmosphereParameters atmosphere_ = glsl::defaultAtmosphere();
   Table4D transmittance_, multiple_, irradiance_;
   GLuint transmittanceTexture_ = 0, multipleTexture_ = 0, irradianceTexture_ = 0;
-  GLuint skyView_ = 0, aerialInScatter_ = 0, aerialTransmittance_ = 0;
+  GLuint skyView_ = 0, aerialInScatter_ = 0, aerialTransmittance_ = 0, aerialSingle_ = 0;
   GlProgram viewProgram_, aerialProgram_, compositeProgram_;
   StorageBuffer colour_, distance_;
 };
