@@ -5,9 +5,10 @@
 // equal, within 3%, the loss a direct CPU integration gives: the brute-force reference's single
 // scattering along the pixel's ray (src/reference, a quadrature) with the sunlight at each point
 // scaled by the clouds' share slabTransmittance(τ) — τ from the sun volume the GPU built, read
-// back and interpolated here — against the same without the shadow. The shafts share nothing
-// with the CPU but that volume: not the aerial table, nor the march. A ray that meets no shadow
-// (looking toward the sun's side, the shadow behind) must not change.
+// back and interpolated here — against the same without the shadow. The CPU shares nothing with
+// the shafts but that volume: neither the aerial table nor the march. The 33 × 33 frame has 5 × 5
+// shaft cells of 8 pixels, the centre pixel's ray that of the centre cell. A ray that meets no
+// shadow (looking toward the sun's side, the shadow behind) must not change.
 #include <catch2/catch.hpp>
 
 #include <algorithm>

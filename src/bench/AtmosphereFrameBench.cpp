@@ -29,10 +29,10 @@ void benchAtmosphereFrame(BenchReport& report, const BenchOptions& options) {
     const char* name;
     bool atmosphere, shafts;
   };
-  double uniformTotal = 0.0;
-  for (const Variant& v : {Variant{"uniform sky", false, false}, Variant{"atmosphere, no light shafts", true, false},
-                           Variant{"atmosphere with light shafts", true, true}}) {
-    reportProgress(options.progress, std::string("bench: atmosphere frame, ") + v.name, 0.0);
+  const Variant variants[3] = {{"uniform sky", false, false},
+                               {"atmosphere without light shafts", true, false},
+                               {"atmosphere with light shafts", true, true}};
+  const auto settingsOf = [&](const Variant& v) {
     render::RenderSettings s;
     s.width = width;
     s.height = height;
@@ -41,12 +41,28 @@ void benchAtmosphereFrame(BenchReport& report, const BenchOptions& options) {
     s.blend = render::BlendMode::Volume;
     s.downscale = 2;
     s.lightShafts = v.shafts;
-    renderer.renderCloudscape(scene.cloud, q, s);  // warm-up (buffers, shader caches)
-    render::RenderStats st;
-    const auto t0 = std::chrono::steady_clock::now();
-    renderer.renderCloudscape(scene.cloud, q, s, &st);
-    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!v.atmosphere) uniformTotal = total;
+    return s;
+  };
+  // a warm-up of each (buffers, shader caches), then the three in turn, twice: each variant's
+  // faster frame (the machine is shared; the turns spread its load over the three alike)
+  for (const Variant& v : variants) renderer.renderCloudscape(scene.cloud, q, settingsOf(v));
+  render::RenderStats best[3];
+  double bestTotal[3] = {0.0, 0.0, 0.0};
+  for (int round = 0; round < 2; ++round)
+    for (int i = 0; i < 3; ++i) {
+      reportProgress(options.progress, std::string("bench: atmosphere frame, ") + variants[i].name, (round * 3 + i) / 6.0);
+      render::RenderStats st;
+      const auto t0 = std::chrono::steady_clock::now();
+      renderer.renderCloudscape(scene.cloud, q, settingsOf(variants[i]), &st);
+      const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (round == 0 || total < bestTotal[i]) {
+        bestTotal[i] = total;
+        best[i] = st;
+      }
+    }
+  for (int i = 0; i < 3; ++i) {
+    const Variant& v = variants[i];
+    const render::RenderStats& st = best[i];
     auto row = [&](const std::string& stage, double seconds, const std::string& note) {
       BenchRow r;
       r.suite = "atmosphere";
@@ -63,11 +79,14 @@ void benchAtmosphereFrame(BenchReport& report, const BenchOptions& options) {
     row("sunlight", st.occlusionSeconds, "sun volume");
     row("shading+blending", st.renderSeconds, "particles at half resolution");
     row("upscale", st.upscaleSeconds, "");
-    row("sky", st.skySeconds, v.atmosphere ? "sky view, aerial volume, composite (SkyPass)" : "none");
-    char note[96];
-    std::snprintf(note, sizeof note, "%.1f%% over the uniform sky (goal <= 20%%)",
-                  uniformTotal > 0.0 ? 100.0 * (total / uniformTotal - 1.0) : 0.0);
-    row("total", total, v.atmosphere ? note : "the reference frame");
+    const char* sky = !v.atmosphere ? "none"
+                      : v.shafts    ? "sky view, aerial volume, light shafts, composite (SkyPass)"
+                                    : "sky view, aerial volume, composite (SkyPass)";
+    row("sky", st.skySeconds, sky);
+    char note[128];
+    std::snprintf(note, sizeof note, "the faster of 2; %.1f%% over the uniform sky (goal <= 20%%)",
+                  100.0 * (bestTotal[i] / bestTotal[0] - 1.0));
+    row("total", bestTotal[i], i > 0 ? note : "the faster of 2; the reference frame");
   }
 }
 

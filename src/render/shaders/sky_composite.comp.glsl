@@ -5,7 +5,8 @@
 //                   the ground's radiance (groundRadiance, sunlight through the clouds' shadow
 //                   exp(−τ) of the sun volume) through T to the ground;
 //   L = T(d) Lc + A S(d) + (1 − A) Lb   (S, T from the aerial-perspective volume; seed §5.6),
-// with the light shafts' losses (sky_shafts.glsl) taken from S(d) and from Lb's in-scattering.
+// with the light shafts' losses ΔL (sky_shafts.glsl, from the shafts volume) taken from S(d) and
+// from Lb's in-scattering.
 // Writes L into the colour buffer in place (A kept). Needs sky_uniforms.glsl, the sun volume's
 // sampling code and sky_shafts.glsl.
 layout(local_size_x = 64) in;
@@ -17,6 +18,8 @@ uniform sampler3D uAerialTransmittance;
 uniform ivec2 uSize;
 uniform int uFirstRow;
 uniform float uNoDistance;
+uniform sampler3D uShaftLoss;  // the light shafts' loss ΔL at the aerial slices, per screen cell
+uniform bool uShafts;          // light shafts on (a volume was built and uShaftLoss is filled)
 
 void main() {
   int x = int(gl_GlobalInvocationID.x), row = int(gl_GlobalInvocationID.y);
@@ -33,8 +36,12 @@ void main() {
   vec4 c = colour[i];
   float dist = distanceTo[i];
   bool cloud = c.a > 0.0 && dist < uNoDistance;
-  vec3 lossFar, lossNear;
-  shaftLoss(d, uv, ivec2(x, y), distanceToAtmosphereEnd(uAtmosphere, r, mu), cloud ? dist : 0.0, lossFar, lossNear);
+  // the light shafts' losses to the ray's end and to the clouds (0 when the shafts are off)
+  vec3 lossFar = vec3(0.0), lossNear = vec3(0.0);
+  if (uShafts) {
+    lossFar = cumulativeAt(uShaftLoss, uv, distanceToAtmosphereEnd(uAtmosphere, r, mu));
+    if (cloud) lossNear = cumulativeAt(uShaftLoss, uv, dist);
+  }
   inScatter = max(inScatter - lossFar, vec3(0.0));
   vec3 background;
   if (ground) {
