@@ -44,8 +44,9 @@ void benchRenderParticleCount(BenchReport& report, const BenchOptions& options);
 void benchAtmosphere(BenchReport& report, const BenchOptions& options);
 
 // The default cloudscape at 1280 × 720 (640 × 360 quick), volume blending, particles at half
-// resolution, under the uniform sky, the atmosphere without light shafts and with them, back to
-// back: stage times and the whole frame (AtmosphereFrameBench.cpp).
+// resolution, under the uniform sky, the atmosphere without light shafts and with them, in turn
+// twice: each one's faster frame, its stage times (AtmosphereFrameBench.cpp). `--suite
+// atmosphere-frame` runs only these rows.
 void benchAtmosphereFrame(BenchReport& report, const BenchOptions& options);
 
 // The LUT set the render suites time with: a small baked optical-depth table and synthetic
