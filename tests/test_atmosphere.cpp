@@ -180,7 +180,7 @@ TEST_CASE("bake --tables atmosphere writes three tables a LUT set reader loads",
   const Table4D& t = set.tables.at("atmosphere_transmittance").table;
   CHECK(t.dims() == std::array<int, 4>{256, 128, 1, 1});
   const Table4D& ms = set.tables.at("atmosphere_multiple_scattering").table;
-  CHECK(ms.dims() == std::array<int, 4>{32, 32, 2, 1});
+  CHECK(ms.dims() == std::array<int, 4>{32, 32, 6, 1});
   // block 1, (1/4π) ∫ L cos²θ dω, lies between 0 and block 0, (1/4π) ∫ L dω, at every node
   std::size_t outside = 0;
   for (int j = 0; j < 32; ++j)

@@ -85,30 +85,40 @@ CLOUDLUT_FN vec3 skyIrradianceNode(AtmosphereParameters a, AtmosphereTexture tra
 // --- Scattering orders, one at a time (what the baker uses for Ψms by default; Hillaire's
 // geometric series above stays for comparison). Order n's radiance arriving at a point along
 // direction ω is, per unit sun irradiance,
-//   L_n(ω) = ∫ T(0, t) σs(t) J_{n−1}(t) dt + T(0, ground) (albedo/π) E_{n−1}(ground),
+//   L_n(ω) = ∫ T(0, t) σs(t) J_{n−1}(t, ω) dt + T(0, ground) (albedo/π) E_{n−1}(ground),
 // with the source of order 1 the sun seen through the true phase functions,
 //   σs J_0 = (σs_R P_R(nu) + σs_M P_M(nu)) T_sun, E_0 = T_sun max(mu_s, 0),
-// and, from order 2 on, the order below scattered toward the ray's start: its average
-// J_{n−1} = (1/4π) ∫ L_{n−1} dω and vertical moment K_{n−1} = (1/4π) ∫ L_{n−1} cos²θ dω through
-// the Rayleigh phase (rayleighFromMoments), its average alone for Mie, taken where each point of
-// the ray is (its own r and mu_s) rather than where the ray starts: the Bruneton & Neyret 2008 §4
-// iteration (eqs. 6–9) with a source that depends on the direction only through its zenith angle
-// from the second order on (Hillaire 2020 §5.5.2 takes it isotropic). E_{n−1} is the irradiance
-// of order n − 1 on the ground, ∫ L_{n−1} cos θ dω over the upper hemisphere.
-// Ψms = Σ_{n ≥ 1} J_n and its moment Σ_{n ≥ 1} K_n (sr⁻¹).
+// and, from order 2 on, the order below scattered toward the ray's start through its moments
+// (multipleScatteringSource: exact for the Rayleigh phase, the mean and dipole for Mie), taken
+// where each point of the ray is (its own r, mu_s and frame) rather than where the ray starts:
+// the Bruneton & Neyret 2008 §4 iteration (eqs. 6–9) with a source kept to the field's moments
+// (Hillaire 2020 §5.5.2 keeps its mean alone). E_{n−1} is the irradiance of order n − 1 on the
+// ground, ∫ L_{n−1} cos θ dω over the upper hemisphere. Each table block is the sum over n ≥ 1 of
+// the order's moment.
 
-// J_n, K_n and E_n of one node: average radiance, its vertical moment (sr⁻¹) and horizontal
-// irradiance (per unit sun irradiance) of scattering order n at (r, mu_s).
+// The moments of the radiance of scattering order n arriving at (r, mu_s) (the six blocks of the
+// multiple-scattering table, see cloudlut_atmosphere_tables.glsl; sr⁻¹) and its horizontal
+// irradiance (per unit sun irradiance, dimensionless).
 struct ScatteringOrder {
-  vec3 average;     // J_n = (1/4π) ∫ L_n dω, sr⁻¹
-  vec3 moment;      // K_n = (1/4π) ∫ L_n cos²θ dω, sr⁻¹
-  vec3 irradiance;  // E_n = ∫ L_n max(cos θ, 0) dω, dimensionless
+  vec3 average;     // J_n   = (1/4π) ∫ L_n dω
+  vec3 momentYY;    // Myy_n = (1/4π) ∫ L_n ω_y² dω (ω_y = cos θ from the zenith)
+  vec3 momentXX;    // Mxx_n = (1/4π) ∫ L_n ω_x² dω (ω_x toward the sun's azimuth)
+  vec3 momentXY;    // Mxy_n = (1/4π) ∫ L_n ω_x ω_y dω
+  vec3 dipoleX;     // Dx_n  = (1/4π) ∫ L_n ω_x dω
+  vec3 dipoleY;     // Dy_n  = (1/4π) ∫ L_n ω_y dω
+  vec3 irradiance;  // E_n   = ∫ L_n max(ω_y, 0) dω
 };
 
-// One node of order n from the tables of order n − 1 (`previous` J_{n−1} and K_{n−1} in the
+// The cosine from the zenith of the edge s ∈ [−1, 1] of the directions' zenith bins: s |s|, which
+// crowds the bins about the horizon (8 bins put edges at cos θ = 0, ±0.0625, ±0.25, ±0.5625, ±1),
+// where the radiance arriving at a point changes fastest with the elevation (the long grazing
+// paths, the Earth's shadow at twilight).
+CLOUDLUT_FN float orderBinCosine(float s) { return s * abs(s); }
+
+// One node of order n from the tables of order n − 1 (`previous` its moments in the
 // multiple-scattering table's layout, `previousIrradiance` E_{n−1} on its grid; unused when
 // fromSun, which computes order 1 from the sun). The midpoint rule over `dirs` bins of cos θ in
-// [−1, 1] times `dirs` bins of azimuth in [0, π], doubled (the field is symmetric about the
+// [−1, 1] (crowded about the horizon, orderBinCosine) times `dirs` bins of azimuth in [0, π], doubled (the field is symmetric about the
 // sun's vertical plane), each ray in `steps` pieces whose ends grow as (i / steps)², each piece
 // integrated exactly for a source and extinction constant over it.
 CLOUDLUT_FN ScatteringOrder scatteringOrderNode(AtmosphereParameters a, AtmosphereTexture transmittanceTable,
@@ -118,11 +128,19 @@ CLOUDLUT_FN ScatteringOrder scatteringOrderNode(AtmosphereParameters a, Atmosphe
   vec3 sunDir = vec3(sqrt(max(1.0f - muS * muS, 0.0f)), muS, 0.0f);
   ScatteringOrder o;
   o.average = vec3(0.0f);
-  o.moment = vec3(0.0f);
+  o.momentYY = vec3(0.0f);
+  o.momentXX = vec3(0.0f);
+  o.momentXY = vec3(0.0f);
+  o.dipoleX = vec3(0.0f);
+  o.dipoleY = vec3(0.0f);
   o.irradiance = vec3(0.0f);
   float n = float(steps);
   for (int j = 0; j < dirs; ++j) {
-    float cosTheta = 1.0f - 2.0f * (float(j) + 0.5f) / float(dirs);
+    // zenith bin j between the edges orderBinCosine(1 − 2j/dirs) and orderBinCosine(1 − 2(j + 1)/dirs),
+    // sampled at the image of its middle; its share of the sphere is half its width in cos θ
+    float cosTheta = orderBinCosine(1.0f - 2.0f * (float(j) + 0.5f) / float(dirs));
+    float share = 0.5f * (orderBinCosine(1.0f - 2.0f * float(j) / float(dirs)) -
+                          orderBinCosine(1.0f - 2.0f * float(j + 1) / float(dirs))) / float(dirs);
     float sinTheta = sqrt(max(1.0f - cosTheta * cosTheta, 0.0f));
     for (int k = 0; k < dirs; ++k) {
       float phi = CLOUDLUT_PI * (float(k) + 0.5f) / float(dirs);
@@ -142,7 +160,7 @@ CLOUDLUT_FN ScatteringOrder scatteringOrderNode(AtmosphereParameters a, Atmosphe
         float sM = mieScatteringAt(a, h);
         vec3 J = fromSun ? (sR * pR + vec3(sM * pM)) *
                                transmittanceToSun(a, transmittanceTable, rt, muSt, CLOUDLUT_SUN_ANGULAR_RADIUS)
-                         : multipleScatteringSource(a, previous, rt, muSt, clamp((r * mu + t) / rt, -1.0f, 1.0f));
+                         : multipleScatteringSource(a, previous, rt, muSt, clamp((r * mu + t) / rt, -1.0f, 1.0f), nu);
         vec3 stepT = exp(-sigmaT * dt);
         L += T * J * (vec3(1.0f) - stepT) / max(sigmaT, vec3(1e-20f));
         T *= stepT;
@@ -155,24 +173,29 @@ CLOUDLUT_FN ScatteringOrder scatteringOrderNode(AtmosphereParameters a, Atmosphe
                                           CLOUDLUT_MULTIPLE_HEIGHT, 0, 1);
         L += T * a.groundAlbedo * (4.0f * CLOUDLUT_INV_4PI) * E;
       }
+      L *= share;  // (1/4π) ∫ over the cell and its mirror image
       o.average += L;
-      o.moment += L * (mu * mu);
-      o.irradiance += L * max(mu, 0.0f);
+      o.momentYY += L * (w.y * w.y);
+      o.momentXX += L * (w.x * w.x);
+      o.momentXY += L * (w.x * w.y);
+      o.dipoleX += L * w.x;
+      o.dipoleY += L * w.y;
+      o.irradiance += L * (4.0f * CLOUDLUT_PI * max(w.y, 0.0f));
     }
   }
-  // each of the dirs² cells, mirrored, covers 4π / dirs² sr
-  float count = float(dirs * dirs);
-  o.average /= count;
-  o.moment /= count;
-  o.irradiance *= 4.0f * CLOUDLUT_PI / count;
   return o;
 }
 
-// Ψms (or its moment) from the orders 1 … N of J (or K) summed (`sum`) and the last two (`last`
-// J_N, `previous` J_{N−1}): the orders beyond N as the geometric tail J_N q / (1 − q) with
-// q = J_N / J_{N−1} per channel, clamped to [0, 0.9] (the ratio of successive orders settles
-// after a few).
-CLOUDLUT_FN vec3 multipleScatteringFromOrders(vec3 sum, vec3 last, vec3 previous) {
-  vec3 q = clamp(last / max(previous, vec3(1e-30f)), vec3(0.0f), vec3(0.9f));
+// The ratio of successive orders q = J_N / J_{N−1} per channel, from the averages of the last two
+// orders (`last` J_N, `previous` J_{N−1}), clamped to [0, 0.9] (it settles after a few orders).
+CLOUDLUT_FN vec3 multipleScatteringOrderRatio(vec3 last, vec3 previous) {
+  return clamp(last / max(previous, vec3(1e-30f)), vec3(0.0f), vec3(0.9f));
+}
+
+// One moment (any block) of the orders ≥ 1 from its sum over the orders 1 … N (`sum`) and its
+// value at order N (`last`): the orders beyond N as the geometric tail last · q / (1 − q), q from
+// multipleScatteringOrderRatio (every moment decays as the average does once the field's shape
+// settles).
+CLOUDLUT_FN vec3 multipleScatteringFromOrders(vec3 sum, vec3 last, vec3 q) {
   return sum + last * q / (vec3(1.0f) - q);
 }

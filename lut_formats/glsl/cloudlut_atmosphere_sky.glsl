@@ -15,7 +15,8 @@ const int CLOUDLUT_SKY_STEPS = 40;
 
 // In-scattered radiance and transmittance of a segment of a view ray.
 struct SkySegment {
-  vec3 radiance;       // sr⁻¹ per unit sun irradiance
+  vec3 radiance;       // sr⁻¹ per unit sun irradiance, all the orders asked for
+  vec3 single;         // sr⁻¹ per unit sun irradiance, the single scattering of sunlight in it
   vec3 transmittance;  // dimensionless
 };
 
@@ -23,7 +24,7 @@ struct SkySegment {
 // cosine muS and at cosine nu from the ray: L = ∫ T(0, t) J(t) dt, T = exp(−∫ σt), with the
 // source J = (σs_R P_R(nu) + σs_M P_M(nu)) T_sun + msWeight · multipleScatteringSource (single
 // scattering, Bruneton & Neyret 2008 eq. 4; orders ≥ 2, Hillaire 2020 §5.5.2 eq. 11 with the
-// Rayleigh phase applied to the field's vertical moment). The
+// phase functions applied to the field's moments, multipleScatteringSource). The
 // segment is cut into `steps` pieces whose ends grow as (i / steps)², each integrated exactly
 // for a source and extinction constant over it (Hillaire 2015, energy-conserving integration).
 // msWeight = 0 gives single scattering only (--sky-orders 1).
@@ -33,6 +34,7 @@ CLOUDLUT_FN SkySegment integrateSkySegment(AtmosphereParameters a, AtmosphereTex
   float pR = phaseRayleigh(nu), pM = phaseCornetteShanks(nu, a.mieG);
   SkySegment s;
   s.radiance = vec3(0.0f);
+  s.single = vec3(0.0f);
   s.transmittance = vec3(1.0f);
   float n = float(steps);
   for (int i = 0; i < steps; ++i) {
@@ -46,11 +48,14 @@ CLOUDLUT_FN SkySegment integrateSkySegment(AtmosphereParameters a, AtmosphereTex
     vec3 sR = rayleighScatteringAt(a, h);
     float sM = mieScatteringAt(a, h);
     vec3 sun = transmittanceToSun(a, transmittanceTable, rt, muSt, CLOUDLUT_SUN_ANGULAR_RADIUS);
-    vec3 J = (sR * pR + vec3(sM * pM)) * sun;
+    vec3 J1 = (sR * pR + vec3(sM * pM)) * sun;
+    vec3 J = J1;
     if (msWeight > 0.0f)
-      J += msWeight * multipleScatteringSource(a, multipleTable, rt, muSt, clamp((r * mu + t) / rt, -1.0f, 1.0f));
+      J += msWeight * multipleScatteringSource(a, multipleTable, rt, muSt, clamp((r * mu + t) / rt, -1.0f, 1.0f), nu);
     vec3 stepT = exp(-sigmaT * dt);
-    s.radiance += s.transmittance * J * (vec3(1.0f) - stepT) / max(sigmaT, vec3(1e-20f));
+    vec3 weight = s.transmittance * (vec3(1.0f) - stepT) / max(sigmaT, vec3(1e-20f));  // ∫ T dt over the piece
+    s.radiance += weight * J;
+    s.single += weight * J1;
     s.transmittance *= stepT;
   }
   return s;

@@ -3,9 +3,9 @@
 // looked up. Needs cloudlut_geometry.glsl (lutTexCoord), cloudlut_atmosphere.glsl.
 //
 //   transmittance       T(r, mu) to the top of the atmosphere, RGB, 256 × 64 (x_mu, x_r);
-//   multiple scattering Ψms(r, mu_s) and its vertical moment, RGB, 32 × 32 × 2 (x_mu_s, x_r,
-//                       block), the blocks stacked along the texture's height (Hillaire 2020,
-//                       §5.5.2, with the moment of rayleighFromMoments);
+//   multiple scattering Ψms(r, mu_s) and the field's other moments, RGB, 32 × 32 × 6 (x_mu_s,
+//                       x_r, block), the blocks stacked along the texture's height (Hillaire
+//                       2020, §5.5.2, with the moments of rayleighFromMoments, mieFromMoments);
 //   sky irradiance      E(r, mu_s) on a horizontal surface, RGB, 64 × 16 (x_mu_s, x_r).
 //
 // Every table stores node i of an axis of n nodes at the unit-range value x = i / (n − 1), the
@@ -101,22 +101,30 @@ CLOUDLUT_FN vec3 transmittanceAlongRay(AtmosphereParameters a, AtmosphereTexture
   return min(num / max(den, vec3(1e-30f)), vec3(1.0f));
 }
 
-// --- Multiple scattering and irradiance: x_mu_s = (1 ± sqrt(|mu_s|)) / 2 (the sign of mu_s), which
-// crowds the nodes about the horizon, where twilight changes fastest (32 nodes put the two
-// nearest the horizon at mu_s = ±0.001 and the next at ±0.009; Hillaire 2020 §5.5.2 uses
-// (mu_s + 1) / 2), and x_r = (r − bottom) / (top − bottom) (Bruneton 2017's irradiance texture
-// uses the same r axis).
+// --- Multiple scattering and irradiance: x_mu_s = (1 + sqrt(mu_s)) / 2 with the sun above the
+// horizon, (1 − sqrt(−mu_s / 0.2)) / 2 below it, which crowds the nodes about the horizon, where
+// twilight changes fastest (32 nodes put the nearest above the horizon at mu_s = 0.001, 0.009,
+// 0.026, and below it at −0.0002, −0.0019, −0.0052, −0.0102, −0.0169, −0.025, −0.035: the
+// field falls about exponentially as the sun sinks, and linear interpolation between nodes any
+// farther apart overestimates it, by 9% at the sun −2° with the sky looking away from it, when
+// the negative half spanned mu_s down to −1; Hillaire 2020 §5.5.2 uses (mu_s + 1) / 2), and
+// x_r = (r − bottom) / (top − bottom) (Bruneton 2017's irradiance texture uses the same r axis).
+
+// The deepest twilight the sun tables hold: |mu_s| of the lowest sun, below the horizon (−0.2,
+// the sun 11.5° down, as Bruneton 2017's mu_s_min for the Earth); a lower sun reads that node.
+const float CLOUDLUT_SUN_TABLE_MU_S_MIN = 0.2f;
 
 // (x_mu_s, x_r) of (r, mu_s).
 CLOUDLUT_FN vec2 sunTableUnitRange(AtmosphereParameters a, float r, float muS) {
   float m = clamp(muS, -1.0f, 1.0f);
-  return vec2(0.5f * (1.0f + (m < 0.0f ? -sqrt(-m) : sqrt(m))), (r - a.bottomRadius) / (a.topRadius - a.bottomRadius));
+  return vec2(0.5f * (1.0f + (m < 0.0f ? -sqrt(min(-m / CLOUDLUT_SUN_TABLE_MU_S_MIN, 1.0f)) : sqrt(m))),
+              (r - a.bottomRadius) / (a.topRadius - a.bottomRadius));
 }
 
 // (r, mu_s) of a node at (x_mu_s, x_r).
 CLOUDLUT_FN vec2 sunTableRadiusMu(AtmosphereParameters a, vec2 x) {
   float s = 2.0f * x.x - 1.0f;
-  return vec2(a.bottomRadius + x.y * (a.topRadius - a.bottomRadius), s * abs(s));
+  return vec2(a.bottomRadius + x.y * (a.topRadius - a.bottomRadius), s * abs(s) * (s < 0.0f ? CLOUDLUT_SUN_TABLE_MU_S_MIN : 1.0f));
 }
 
 // A table on the (x_mu_s, x_r) grid of `width` × `height` nodes whose texture holds `blocks` such
@@ -128,34 +136,75 @@ CLOUDLUT_FN vec3 sunTableLookup(AtmosphereParameters a, AtmosphereTexture table,
                                        (float(block) + lutTexCoord(x.y, float(height))) / float(blocks)));
 }
 
-// Ψms(r, mu_s), sr⁻¹: the isotropic average (1/4π) ∫ L dω of the radiance of orders ≥ 1 arriving
-// at a point, per unit sun irradiance; the in-scattered radiance of orders ≥ 2 per metre is
-// about σs(h) Ψms (Hillaire 2020, §5.5.2, eq. 11). Block 0 of the multiple-scattering table.
+// The multiple-scattering table holds, per node (r, mu_s), the first three moments of the radiance
+// of orders ≥ 1 arriving at the point, L(ω) with ω the direction looked along, in the frame
+// x = the sun's horizontal direction, y = the local zenith, z the horizontal 90° from x: the
+// field is mirror-symmetric about the sun's vertical plane (z → −z), so the moments odd in z
+// vanish and these six blocks are all of them, each sr⁻¹ per unit sun irradiance:
+//   0  J    = (1/4π) ∫ L dω               Ψms (Hillaire 2020 §5.5.2)
+//   1  Myy  = (1/4π) ∫ L ω_y² dω           the vertical moment
+//   2  Mxx  = (1/4π) ∫ L ω_x² dω           along the sun's azimuth
+//   3  Mxy  = (1/4π) ∫ L ω_x ω_y dω
+//   4  Dx   = (1/4π) ∫ L ω_x dω            the dipole toward the sun's azimuth
+//   5  Dy   = (1/4π) ∫ L ω_y dω            the dipole toward the zenith
+// (Mzz = J − Mxx − Myy.) The Rayleigh phase, a polynomial of degree 2 in the scattering cosine,
+// sees no more of the field than J and M: through them its in-scattering is exact.
+const int CLOUDLUT_MULTIPLE_BLOCKS = 6;
+
+// Block `block` of the multiple-scattering table at (r, mu_s).
+CLOUDLUT_FN vec3 multipleScatteringBlock(AtmosphereParameters a, AtmosphereTexture table, float r, float muS, int block) {
+  return sunTableLookup(a, table, r, muS, CLOUDLUT_MULTIPLE_WIDTH, CLOUDLUT_MULTIPLE_HEIGHT, block,
+                        CLOUDLUT_MULTIPLE_BLOCKS);
+}
+
+// Ψms(r, mu_s), sr⁻¹: block 0; the in-scattered radiance of orders ≥ 2 per metre of an isotropic
+// phase would be σs Ψms (Hillaire 2020, §5.5.2, eq. 11).
 CLOUDLUT_FN vec3 multipleScatteringLookup(AtmosphereParameters a, AtmosphereTexture table, float r, float muS) {
-  return sunTableLookup(a, table, r, muS, CLOUDLUT_MULTIPLE_WIDTH, CLOUDLUT_MULTIPLE_HEIGHT, 0, 2);
+  return multipleScatteringBlock(a, table, r, muS, 0);
 }
 
-// Its second moment in the vertical, (1/4π) ∫ L cos²θ dω (θ from the local zenith), sr⁻¹: 1/3 of
-// Ψms for a field the same from every direction. Block 1 of the multiple-scattering table.
-CLOUDLUT_FN vec3 multipleScatteringMomentLookup(AtmosphereParameters a, AtmosphereTexture table, float r, float muS) {
-  return sunTableLookup(a, table, r, muS, CLOUDLUT_MULTIPLE_WIDTH, CLOUDLUT_MULTIPLE_HEIGHT, 1, 2);
+// The components (v_x, v_y, v_z²) of a unit direction of zenith cosine mu at cosine nu from the
+// sun, itself at zenith cosine muS, in the tables' frame (x the sun's horizontal direction):
+// v_x = (nu − mu muS) / sqrt(1 − muS²) (0 with the sun at the zenith, where the field has no
+// azimuth), v_z² = 1 − mu² − v_x².
+CLOUDLUT_FN vec3 sunFrameDirection(float mu, float muS, float nu) {
+  float sinS = sqrt(max(1.0f - muS * muS, 0.0f));
+  float across = max(1.0f - mu * mu, 0.0f);
+  float vx = sinS > 1e-4f ? clamp((nu - mu * muS) / sinS, -sqrt(across), sqrt(across)) : 0.0f;
+  return vec3(vx, mu, max(across - vx * vx, 0.0f));
 }
 
-// Radiance the Rayleigh phase scatters out of a field of average J and vertical moment K (both
-// sr⁻¹) toward a direction of zenith cosine mu, per unit scattering coefficient, for a field the
-// same at every azimuth: ∫ L(ω) 3/(16π)(1 + (ω·v)²) dω = (3/4)[(3J − K)/2 + (3K − J)/2 · mu²]
-// (the second-moment tensor of L is diag((J − K)/2, K, (J − K)/2) · 4π). Equals J when K = J/3.
-CLOUDLUT_FN vec3 rayleighFromMoments(vec3 J, vec3 K, float mu) {
-  return 0.75f * (0.5f * (3.0f * J - K) + 0.5f * (3.0f * K - J) * (mu * mu));
+// Radiance the Rayleigh phase 3/(16π)(1 + (ω·v)²) scatters toward v out of the field of the six
+// moments, per unit scattering coefficient: ∫ L(ω) P_R(ω·v) dω = (3/4)(J + vᵀMv), exact. J, the
+// blocks 0–3 (J, Myy, Mxx, Mxy), v from sunFrameDirection.
+CLOUDLUT_FN vec3 rayleighFromMoments(vec3 J, vec3 Myy, vec3 Mxx, vec3 Mxy, vec3 v) {
+  vec3 Mzz = J - Mxx - Myy;
+  return 0.75f * (J + Mxx * (v.x * v.x) + Myy * (v.y * v.y) + Mzz * v.z + 2.0f * Mxy * (v.x * v.y));
 }
 
-// The in-scattered radiance of orders ≥ 2 per metre toward a direction of zenith cosine mu at
-// (r, mu_s): Rayleigh through rayleighFromMoments, Mie as if the field were isotropic (σs_M Ψms).
-CLOUDLUT_FN vec3 multipleScatteringSource(AtmosphereParameters a, AtmosphereTexture table, float r, float muS, float mu) {
+// Radiance the Cornette–Shanks phase of asymmetry g scatters toward v out of the field,
+// per unit scattering coefficient, from the field's bands 0 and 1 (its mean and dipole):
+// J + 3 g₁ D·v, with g₁ = 3g(4 + g²)/(5(2 + g²)) the phase's mean cosine (its first Legendre
+// moment, from Henyey–Greenstein's g^ℓ and the factor (1 + ν²)); not below 0.
+CLOUDLUT_FN vec3 mieFromMoments(vec3 J, vec3 Dx, vec3 Dy, vec3 v, float g) {
+  float g1 = 3.0f * g * (4.0f + g * g) / (5.0f * (2.0f + g * g));
+  return max(J + 3.0f * g1 * (Dx * v.x + Dy * v.y), vec3(0.0f));
+}
+
+// The in-scattered radiance of orders ≥ 2 per metre at (r, mu_s) toward a direction of zenith
+// cosine mu at cosine nu from the sun, per unit sun irradiance (m⁻¹ sr⁻¹): σs_R times the Rayleigh
+// phase on the field (rayleighFromMoments) plus σs_M times the Mie phase on it (mieFromMoments).
+CLOUDLUT_FN vec3 multipleScatteringSource(AtmosphereParameters a, AtmosphereTexture table, float r, float muS, float mu,
+                                          float nu) {
   float h = r - a.bottomRadius;
-  vec3 J = multipleScatteringLookup(a, table, r, muS);
-  vec3 K = multipleScatteringMomentLookup(a, table, r, muS);
-  return rayleighScatteringAt(a, h) * rayleighFromMoments(J, K, mu) + vec3(mieScatteringAt(a, h)) * J;
+  vec3 v = sunFrameDirection(mu, muS, nu);
+  vec3 J = multipleScatteringBlock(a, table, r, muS, 0);
+  vec3 rayleigh = rayleighFromMoments(J, multipleScatteringBlock(a, table, r, muS, 1),
+                                      multipleScatteringBlock(a, table, r, muS, 2),
+                                      multipleScatteringBlock(a, table, r, muS, 3), v);
+  vec3 mie = mieFromMoments(J, multipleScatteringBlock(a, table, r, muS, 4), multipleScatteringBlock(a, table, r, muS, 5),
+                            v, a.mieG);
+  return rayleighScatteringAt(a, h) * rayleigh + vec3(mieScatteringAt(a, h)) * mie;
 }
 
 // Sky irradiance on a horizontal surface at (r, mu_s), per unit sun irradiance (W m⁻² per

@@ -1,7 +1,9 @@
 #include "bake/AtmosphereBaker.h"
 
+#include <algorithm>
 #include <functional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -13,8 +15,8 @@
 namespace cloudlut::bake {
 namespace {
 
-// A 2D RGB table over the unit ranges (x0, x1) ∈ [0, 1]², `blocks` of them along axis 2 (1 or 2;
-// block b holds a second quantity on the same grid); axis 3 is a single node.
+// A 2D RGB table over the unit ranges (x0, x1) ∈ [0, 1]², `blocks` of them along axis 2 (block b
+// holds the b-th quantity on the same grid); axis 3 is a single node.
 Table4D makeTable(const std::string& name, const char* axis0, const char* axis1, int width, int height,
                   const std::string& meaning, int blocks = 1) {
   std::array<Axis, 4> axes{};
@@ -41,12 +43,13 @@ void fill(Table4D& table, const std::function<glm::vec3(glm::vec2)>& node) {
 }
 
 constexpr int kW = glsl::CLOUDLUT_MULTIPLE_WIDTH, kH = glsl::CLOUDLUT_MULTIPLE_HEIGHT;
+constexpr int kBlocks = glsl::CLOUDLUT_MULTIPLE_BLOCKS;
 constexpr std::size_t kBlock = std::size_t(3) * kW * kH;  // floats in one W × H RGB block
 
-// One scattering order on the multiple-scattering grid: J_n and K_n in the table's two-block
-// layout (block 0 J, block 1 K) and E_n in one block.
+// One scattering order on the multiple-scattering grid: its six moments in the table's layout
+// (block 0 J, 1 Myy, 2 Mxx, 3 Mxy, 4 Dx, 5 Dy) and E_n in one block.
 struct OrderArrays {
-  std::vector<float> moments = std::vector<float>(2 * kBlock, 0.0f);
+  std::vector<float> moments = std::vector<float>(kBlocks * kBlock, 0.0f);
   std::vector<float> irradiance = std::vector<float>(kBlock, 0.0f);
 };
 
@@ -55,7 +58,7 @@ OrderArrays computeOrder(const glsl::AtmosphereParameters& a, const glsl::Atmosp
                          const OrderArrays* previous, const AtmosphereBakeSettings& s) {
   OrderArrays out;
   const bool fromSun = previous == nullptr;
-  const glsl::AtmosphereTexture pm = fromSun ? transmittance : glsl::AtmosphereTexture{previous->moments.data(), kW, 2 * kH};
+  const glsl::AtmosphereTexture pm = fromSun ? transmittance : glsl::AtmosphereTexture{previous->moments.data(), kW, kBlocks * kH};
   const glsl::AtmosphereTexture pe = fromSun ? transmittance : glsl::AtmosphereTexture{previous->irradiance.data(), kW, kH};
   tbb::parallel_for(tbb::blocked_range<int>(0, kH), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j)
@@ -65,9 +68,9 @@ OrderArrays computeOrder(const glsl::AtmosphereParameters& a, const glsl::Atmosp
         const glsl::ScatteringOrder o = glsl::scatteringOrderNode(a, transmittance, pm, pe, rm.x, rm.y, s.multipleDirections,
                                                                   s.multipleSteps, fromSun);
         const std::size_t n = 3 * (std::size_t(j) * kW + i);
+        const glm::vec3 blocks[kBlocks] = {o.average, o.momentYY, o.momentXX, o.momentXY, o.dipoleX, o.dipoleY};
         for (int c = 0; c < 3; ++c) {
-          out.moments[n + c] = o.average[c];
-          out.moments[kBlock + n + c] = o.moment[c];
+          for (int b = 0; b < kBlocks; ++b) out.moments[b * kBlock + n + c] = blocks[b][c];
           out.irradiance[n + c] = o.irradiance[c];
         }
       }
@@ -75,10 +78,10 @@ OrderArrays computeOrder(const glsl::AtmosphereParameters& a, const glsl::Atmosp
   return out;
 }
 
-// Ψms and its moment by orders: 1 … N one at a time, summed, plus the geometric tail beyond N.
+// Ψms and its moments by orders: 1 … N one at a time, summed, plus the geometric tail beyond N.
 void fillMultipleByOrders(Table4D& table, const glsl::AtmosphereParameters& a, const glsl::AtmosphereTexture& transmittance,
                           const AtmosphereBakeSettings& s) {
-  std::vector<float> sum(2 * kBlock, 0.0f);
+  std::vector<float> sum(kBlocks * kBlock, 0.0f);
   OrderArrays last, previous;
   for (int order = 1; order <= s.multipleOrders; ++order) {
     OrderArrays next = computeOrder(a, transmittance, order == 1 ? nullptr : &last, s);
@@ -86,13 +89,20 @@ void fillMultipleByOrders(Table4D& table, const glsl::AtmosphereParameters& a, c
     last = std::move(next);
     for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += last.moments[k];
   }
-  for (std::size_t k = 0; k < sum.size(); k += 3) {
-    const glm::vec3 before = s.multipleOrders > 1 ? glm::vec3(previous.moments[k], previous.moments[k + 1], previous.moments[k + 2])
-                                                  : glm::vec3(0.0f);
-    const glm::vec3 v = glsl::multipleScatteringFromOrders(glm::vec3(sum[k], sum[k + 1], sum[k + 2]),
-                                                           glm::vec3(last.moments[k], last.moments[k + 1], last.moments[k + 2]),
-                                                           before);
-    for (int c = 0; c < 3; ++c) table.data()[k + c] = v[c];
+  if (!s.multipleTail) {
+    std::copy(sum.begin(), sum.end(), table.data().begin());
+    return;
+  }
+  const auto at = [](const std::vector<float>& v, std::size_t k) { return glm::vec3(v[k], v[k + 1], v[k + 2]); };
+  for (std::size_t k = 0; k < kBlock; k += 3) {
+    // the ratio of the last two orders' averages (block 0); none with one order
+    const glm::vec3 q = s.multipleOrders > 1 ? glsl::multipleScatteringOrderRatio(at(last.moments, k), at(previous.moments, k))
+                                             : glm::vec3(0.0f);
+    for (int b = 0; b < kBlocks; ++b) {
+      const std::size_t m = b * kBlock + k;
+      const glm::vec3 v = glsl::multipleScatteringFromOrders(at(sum, m), at(last.moments, m), q);
+      for (int c = 0; c < 3; ++c) table.data()[m + c] = v[c];
+    }
   }
 }
 
@@ -100,8 +110,9 @@ void fillMultipleByOrders(Table4D& table, const glsl::AtmosphereParameters& a, c
 
 glsl::AtmosphereTexture atmosphereTexture(const Table4D& table) {
   const auto d = table.dims();
-  if (table.channelCount() != 3 || d[2] > 2 || d[3] != 1)
-    throw std::invalid_argument("table '" + table.name() + "' is not an atmosphere table (3 channels, 2 axes, 1 or 2 blocks)");
+  if (table.channelCount() != 3 || (d[2] != 1 && d[2] != kBlocks) || d[3] != 1)
+    throw std::invalid_argument("table '" + table.name() + "' is not an atmosphere table (3 channels, 2 axes, 1 or " +
+                                std::to_string(kBlocks) + " blocks)");
   return glsl::AtmosphereTexture{table.data().data(), d[0], d[1] * d[2]};
 }
 
@@ -128,8 +139,9 @@ AtmosphereTables bakeAtmosphere(const glsl::AtmosphereParameters& a, const Atmos
   reportProgress(progress, "atmosphere multiple scattering", 0.3);
   t.multipleScattering = makeTable("atmosphere_multiple_scattering", "x_mu_s", "x_r", glsl::CLOUDLUT_MULTIPLE_WIDTH,
                                    glsl::CLOUDLUT_MULTIPLE_HEIGHT,
-                                   "Psi_ms (block 0) and its vertical moment (block 1), radiance of orders >= 1 per unit sun "
-                                   "irradiance (1/sr)", 2);
+                                   "moments of the radiance of orders >= 1 arriving, per unit sun irradiance (1/sr): "
+                                   "block 0 Psi_ms, 1 Myy, 2 Mxx, 3 Mxy, 4 Dx, 5 Dy",
+                                   kBlocks);
   if (s.multipleOrders > 0) {
     fillMultipleByOrders(t.multipleScattering, a, transmittance, s);
   } else {
@@ -137,8 +149,9 @@ AtmosphereTables bakeAtmosphere(const glsl::AtmosphereParameters& a, const Atmos
       const glm::vec2 rm = glsl::sunTableRadiusMu(a, x);
       return glsl::multipleScatteringNode(a, transmittance, rm.x, rm.y, s.multipleDirections, s.multipleSteps);
     });
-    // the series' field is isotropic: K = J / 3
-    for (std::size_t k = 0; k < kBlock; ++k) t.multipleScattering.data()[kBlock + k] = t.multipleScattering.data()[k] / 3.0f;
+    // the series' field is isotropic: Myy = Mxx = J / 3, Mxy = Dx = Dy = 0
+    std::vector<float>& data = t.multipleScattering.data();
+    for (std::size_t k = 0; k < kBlock; ++k) data[kBlock + k] = data[2 * kBlock + k] = data[k] / 3.0f;
   }
   const glsl::AtmosphereTexture multiple = atmosphereTexture(t.multipleScattering);
 

@@ -1,7 +1,7 @@
 #pragma once
 // The atmosphere's sun-independent tables (lut_formats/glsl/cloudlut_atmosphere_tables.glsl):
-// transmittance T(r, mu) 256 × 128, multiple scattering Ψms(r, mu_s) and its vertical moment
-// 32 × 32 × 2 (axis 2 the block) and sky irradiance E(r, mu_s) 64 × 16, RGB, each a Table4D whose
+// transmittance T(r, mu) 256 × 128, multiple scattering Ψms(r, mu_s) and the field's other
+// moments 32 × 32 × 6 (axis 2 the block) and sky irradiance E(r, mu_s) 64 × 16, RGB, each a Table4D whose
 // axis 3 has one node (axis 2 too but for the multiple-scattering table). Each node is the
 // shared GLSL's integral (opticalDepthToTop, multipleScatteringNode, skyIrradianceNode); the
 // multiple-scattering table needs the transmittance table and the irradiance table both. Ψms is
@@ -15,11 +15,14 @@ namespace cloudlut::bake {
 
 struct AtmosphereBakeSettings {
   int transmittancePanels = 32;  // two-point Gauss–Legendre panels per ray (64 extinction samples)
-  int multipleDirections = 8;    // 8 × 8 = 64 directions per Ψms node (Hillaire 2020 uses 64)
+  int multipleDirections = 8;    // 8 × 8 directions per Ψms node (Hillaire 2020: 64), zenith bins crowded at the horizon
   int multipleSteps = 16;        // pieces per direction (40 change the sky by < 0.1%)
   // Ψms by scattering orders computed one at a time (scatteringOrderNode), this many before the
   // geometric tail; 0 = Hillaire 2020's series from the second order alone (multipleScatteringNode).
   int multipleOrders = 3;  // 4 change the bench's errors by < 0.1%
+  // Whether Ψms adds the geometric tail beyond multipleOrders (false: the orders 1 … multipleOrders
+  // alone, so that the sky's orders 2 … multipleOrders + 1 can be checked one at a time).
+  bool multipleTail = true;
   int irradianceDirections = 8;  // 8 × 8 directions over a mirrored half hemisphere
   int irradianceSteps = 24;      // pieces per direction
   // Orders in the irradiance table: 1 = single scattering only, anything else = all (Ψms).

@@ -1,4 +1,5 @@
 // The atmosphere suite of `cloudlut bench` (see BenchSuites.h).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -155,6 +156,37 @@ void benchAtmosphere(BenchReport& report, const BenchOptions& options) {
     r.errorMax = worstA;
     report.add(r);
   }
+  // where the orders >= 2 go wrong, order by order: the sky's order 2 from a Ψms of order 1 alone
+  // (no tail) against the reference's order 2 alone, and the orders >= 3 as what remains
+  {
+    bake::AtmosphereBakeSettings firstOnly;
+    firstOnly.multipleOrders = 1;
+    firstOnly.multipleTail = false;
+    const bake::AtmosphereTables order1 = bake::bakeAtmosphere(a, firstOnly, options.progress);
+    std::vector<reference::AtmosphereRadiance> second(checks.size());
+    tbb::parallel_for(std::size_t{0}, checks.size(), [&](std::size_t i) {
+      const AtmosphereCheck& c = checks[i];
+      second[i] = ref.singleOrder(position, c.view, c.sun, 2, c.sunElevationDeg < 0.0 ? 10 * paths : paths, 2000 + i);
+    });
+    for (std::size_t i = 0; i < checks.size(); ++i) {
+      const AtmosphereCheck& c = checks[i];
+      const glm::dvec3 modelSingle = tableSkyRadiance(tables, a, c, 1);
+      const glm::dvec3 model2 = tableSkyRadiance(order1, a, c, 0) - modelSingle;
+      const glm::dvec3 model3 = tableSkyRadiance(tables, a, c, 0) - modelSingle - model2;
+      const glm::dvec3 ref3 = multiple[i].value - second[i].value;
+      char note[200];
+      std::snprintf(note, sizeof note,
+                    "model/ref (R G B): order 2 %.3f %.3f %.3f (ref s.e. %.1f%%); orders >= 3 %.3f %.3f %.3f; order 2 share "
+                    "of orders >= 2 (blue) %.0f%%",
+                    model2.x / second[i].value.x, model2.y / second[i].value.y, model2.z / second[i].value.z,
+                    100.0 * second[i].standardError.z / std::max(second[i].value.z, 1e-30), model3.x / ref3.x,
+                    model3.y / ref3.y, model3.z / ref3.z, 100.0 * second[i].value.z / std::max(multiple[i].value.z, 1e-30));
+      BenchRow r = row("sky", "by order", checkName(c));
+      r.errorMean = r.errorMax = relativeError(model2, second[i].value);
+      r.note = note;
+      report.add(r);
+    }
+  }
   for (const Variant& v : variants) {
     double worst = 0.0, mean = 0.0;
     std::string where;
@@ -172,6 +204,7 @@ void benchAtmosphere(BenchReport& report, const BenchOptions& options) {
     r.note = "bake time; worst at " + where;
     report.add(r);
   }
+  benchAtmosphereFrame(report, options);
 }
 
 }  // namespace cloudlut::bench

@@ -7,6 +7,7 @@
 
 #include "bench/BenchReport.h"
 #include "core/Progress.h"
+#include "io/LutIo.h"
 
 namespace cloudlut::bench {
 
@@ -38,8 +39,19 @@ void benchRender(BenchReport& report, const BenchOptions& options);
 void benchRenderParticleCount(BenchReport& report, const BenchOptions& options);
 
 // Atmosphere (AtmosphereBench.cpp): the tables' bake time on 2 threads, and the transmittance,
-// single-scattered and all-orders sky against the brute-force reference (AtmosphereComparison.h).
+// single-scattered and all-orders sky against the brute-force reference (AtmosphereComparison.h);
+// then what the atmosphere adds to a cloudscape frame (benchAtmosphereFrame).
 void benchAtmosphere(BenchReport& report, const BenchOptions& options);
+
+// The default cloudscape at 1280 × 720 (640 × 360 quick), volume blending, particles at half
+// resolution, under the uniform sky, the atmosphere without light shafts and with them, in turn
+// twice: each one's faster frame, its stage times (AtmosphereFrameBench.cpp). `--suite
+// atmosphere-frame` runs only these rows.
+void benchAtmosphereFrame(BenchReport& report, const BenchOptions& options);
+
+// The LUT set the render suites time with: a small baked optical-depth table and synthetic
+// scattering tables (the timing does not depend on their values).
+io::LutSet renderBenchLuts();
 
 // Ground truth (GroundTruthBench.cpp): every rendering method on data/bench_scenes, time against
 // error relative to the path-traced reference; references and LUTs cached under `out`. Throws

@@ -53,7 +53,9 @@ Table4D syntheticScattering(const std::string& name, bool single) {
   return t;
 }
 
-io::LutSet benchLuts() {
+}  // namespace
+
+io::LutSet renderBenchLuts() {
   io::LutSet set;
   set.dir = "(bench: baked 32x16x32x16 noise optical depth, synthetic scattering)";
   bake::OpticalDepthSettings s;
@@ -64,6 +66,8 @@ io::LutSet benchLuts() {
   set.tables["multiple_scattering"] = io::LoadedTable{syntheticScattering("multiple_scattering", false), io::SampleType::Float, true, {}};
   return set;
 }
+
+namespace {
 
 // Mean, 95th percentile and max of the per-pixel |change| of the composited radiance
 // (radiance + T · sky, averaged over R, G, B) between two frames.
@@ -142,7 +146,7 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
   const int width = options.quick ? 320 : 640, height = options.quick ? 180 : 360;
   const int frames = options.quick ? 4 : 8;
   const std::string res = std::to_string(width) + "x" + std::to_string(height);
-  const io::LutSet luts = benchLuts();
+  const io::LutSet luts = renderBenchLuts();
   const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
   render::Renderer renderer(*context, luts);
   const scene::CloudscapeScene scene = scene::loadCloudscape(scene::kDefaultCloudscape);
@@ -270,7 +274,7 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
 }
 
 void benchRenderParticleCount(BenchReport& report, const BenchOptions& options) {
-  const io::LutSet luts = benchLuts();
+  const io::LutSet luts = renderBenchLuts();
   const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
   render::Renderer renderer(*context, luts);
   benchParticleCount(report, options, renderer);

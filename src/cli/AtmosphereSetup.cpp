@@ -11,8 +11,9 @@ void setUpAtmosphere(render::Renderer& renderer, const io::LutSet& luts, const s
   const char* names[3] = {"atmosphere_transmittance", "atmosphere_multiple_scattering", "atmosphere_irradiance"};
   bool stored = luts.manifest.contains("atmosphere") && luts.manifest["atmosphere"] == scene::atmosphereToJson(a);
   for (const char* name : names) stored = stored && luts.tables.count(name) > 0;
-  // a set baked before the multiple-scattering table gained its moment block is baked afresh
-  stored = stored && luts.tables.at(names[1]).table.dims()[2] == 2;
+  // a set baked before the multiple-scattering table held all six moments (1 or 2 blocks) is
+  // baked afresh
+  stored = stored && luts.tables.at(names[1]).table.dims()[2] == glsl::CLOUDLUT_MULTIPLE_BLOCKS;
   if (stored) {
     renderer.setAtmosphereTables(a, luts.tables.at(names[0]).table, luts.tables.at(names[1]).table,
                                  luts.tables.at(names[2]).table);

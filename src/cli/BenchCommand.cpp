@@ -18,7 +18,7 @@ int runBench(int argc, char** argv) {
   cxxopts::Options options("cloudlut bench", "Measure speed and accuracy; write OUT/bench.csv.");
   options.add_options()
     ("out", "output directory", cxxopts::value<std::string>()->default_value("out/bench"))
-    ("suite", "suites to run: optical-depth, scattering, tables, ground-truth, render, render-count (only its particle-count rows), atmosphere, all", cxxopts::value<std::string>()->default_value("all"))
+    ("suite", "suites to run: optical-depth, scattering, tables, ground-truth, render, render-count (only its particle-count rows), atmosphere, atmosphere-frame (only its frame-cost rows), all", cxxopts::value<std::string>()->default_value("all"))
     ("quick", "reduced resolutions for a fast look")
     ("scenes", "ground-truth: only these bench scenes (comma-separated; default: all)", cxxopts::value<std::string>())
     ("threads", "worker threads (0 = all cores)", cxxopts::value<int>()->default_value("0"))
@@ -26,8 +26,8 @@ int runBench(int argc, char** argv) {
   cxxopts::ParseResult args;
   if (!parseOptions(options, argc, argv, args)) return kExitOk;
   const std::string suite = args["suite"].as<std::string>();
-  const std::set<std::string> known{"optical-depth", "scattering", "tables", "ground-truth", "render", "render-count", "atmosphere", "all"};
-  if (!known.count(suite)) throw UsageError("--suite: unknown suite '" + suite + "' (optical-depth, scattering, tables, ground-truth, render, render-count, atmosphere, all)");
+  const std::set<std::string> known{"optical-depth", "scattering", "tables", "ground-truth", "render", "render-count", "atmosphere", "atmosphere-frame", "all"};
+  if (!known.count(suite)) throw UsageError("--suite: unknown suite '" + suite + "' (optical-depth, scattering, tables, ground-truth, render, render-count, atmosphere, atmosphere-frame, all)");
   const std::filesystem::path out = args["out"].as<std::string>();
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
@@ -51,6 +51,7 @@ int runBench(int argc, char** argv) {
   if (suite == "render" || suite == "all") bench::benchRender(report, opts);
   if (suite == "render-count") bench::benchRenderParticleCount(report, opts);
   if (suite == "atmosphere" || suite == "all") bench::benchAtmosphere(report, opts);
+  if (suite == "atmosphere-frame") bench::benchAtmosphereFrame(report, opts);
   finishTtyProgress();
   report.writeCsv(out / "bench.csv");
   report.print();

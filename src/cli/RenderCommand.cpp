@@ -74,6 +74,7 @@ int runRender(int argc, char** argv) {
     ("height", "image height in pixels", cxxopts::value<long long>()->default_value("720"))
     ("exposure", "PNG tone mapping: 1 - exp(-exposure * radiance) under a uniform sky; under the atmosphere the filmic curve's exposure (default: automatic, from the log-average luminance)", cxxopts::value<double>()->default_value("5"))
     ("sky-orders", "the atmosphere's scattering orders: 1 (single scattering only) or all", cxxopts::value<std::string>()->default_value("all"))
+    ("no-light-shafts", "the atmosphere: no light shafts (the clouds' shadow left out of the air's in-scattered sunlight)")
     ("terms", "lighting terms: single, multiple, ambient, all (comma-separated)", cxxopts::value<std::string>()->default_value("all"))
     ("dump-particles", "cloudscapes: write every particle the grid generates around the camera (before frustum culling, level-of-detail fade in the density) as a particle scene FILE.json; --out optional", cxxopts::value<std::string>())
     ("quiet", "print nothing on success");
@@ -105,6 +106,7 @@ int runRender(int argc, char** argv) {
   const std::string skyOrders = args["sky-orders"].as<std::string>();
   if (skyOrders != "1" && skyOrders != "all") throw UsageError("--sky-orders: expected 1 or all, got '" + skyOrders + "'");
   settings.skyOrders = skyOrders == "1" ? 1 : 0;
+  settings.lightShafts = args.count("no-light-shafts") == 0;
   settings.width = static_cast<int>(width);
   settings.height = static_cast<int>(height);
   settings.terms = parseTermList(args["terms"].as<std::string>());

@@ -75,6 +75,12 @@ glm::dvec3 AtmosphereReference::transmittanceToTop(double r, double mu, int pane
 
 glm::dvec3 AtmosphereReference::singleScattering(const glm::dvec3& position, const glm::dvec3& view,
                                                  const glm::dvec3& sun, int steps) const {
+  return singleScattering(position, view, sun, steps, [](const glm::dvec3&) { return 1.0; });
+}
+
+glm::dvec3 AtmosphereReference::singleScattering(const glm::dvec3& position, const glm::dvec3& view,
+                                                 const glm::dvec3& sun, int steps,
+                                                 const std::function<double(const glm::dvec3&)>& sunVisibility) const {
   const double ground = distanceToGround(position, view);
   const double tMax = ground >= 0.0 ? ground : distanceToTop(position, view);
   const double nu = glm::dot(view, sun);
@@ -90,7 +96,7 @@ glm::dvec3 AtmosphereReference::singleScattering(const glm::dvec3& position, con
     const glm::dvec3 sigma = extinction(h);
     const glm::dvec3 T = glm::exp(-(tau + 0.5 * dt * sigma));
     const int panels = std::max(64, static_cast<int>(distanceToTop(x, sun) / 2000.0));
-    L += T * (rayleigh(h) * pR + glm::dvec3(mie(h) * pM)) * sunTransmittance(x, sun, panels) * dt;
+    L += T * (rayleigh(h) * pR + glm::dvec3(mie(h) * pM)) * sunTransmittance(x, sun, panels) * (sunVisibility(x) * dt);
     tau += sigma * dt;
   }
   return L;
@@ -98,16 +104,21 @@ glm::dvec3 AtmosphereReference::singleScattering(const glm::dvec3& position, con
 
 AtmosphereRadiance AtmosphereReference::allOrders(const glm::dvec3& position, const glm::dvec3& view,
                                                   const glm::dvec3& sun, int paths, std::uint64_t seed) const {
-  return trace(position, view, sun, paths, seed, true);
+  return trace(position, view, sun, paths, seed, 1, 1 << 30);
 }
 
 AtmosphereRadiance AtmosphereReference::multipleOrders(const glm::dvec3& position, const glm::dvec3& view,
                                                        const glm::dvec3& sun, int paths, std::uint64_t seed) const {
-  return trace(position, view, sun, paths, seed, false);
+  return trace(position, view, sun, paths, seed, 2, 1 << 30);
+}
+
+AtmosphereRadiance AtmosphereReference::singleOrder(const glm::dvec3& position, const glm::dvec3& view,
+                                                    const glm::dvec3& sun, int order, int paths, std::uint64_t seed) const {
+  return trace(position, view, sun, paths, seed, order, order);
 }
 
 AtmosphereRadiance AtmosphereReference::trace(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun,
-                                              int paths, std::uint64_t seed, bool firstOrder) const {
+                                              int paths, std::uint64_t seed, int firstScored, int lastScored) const {
   AtmosphereRadiance out{glm::dvec3(0.0), glm::dvec3(0.0)};
   for (int c = 0; c < 3; ++c) {
     std::mt19937_64 rng(seed * 3 + static_cast<std::uint64_t>(c));
@@ -118,7 +129,8 @@ AtmosphereRadiance AtmosphereReference::trace(const glm::dvec3& position, const 
     for (int n = 0; n < paths; ++n) {
       glm::dvec3 p = position, d = view;
       double weight = 1.0, radiance = 0.0;
-      for (int bounce = 0; bounce < 200; ++bounce) {
+      for (int bounce = 0; bounce < 200 && bounce < lastScored; ++bounce) {
+        const bool scored = bounce + 1 >= firstScored;  // this vertex's next-event estimate is order bounce + 1
         const double ground = distanceToGround(p, d);
         const double tEnd = ground >= 0.0 ? ground : distanceToTop(p, d);
         // delta tracking to the next real collision, or to the boundary
@@ -136,7 +148,7 @@ AtmosphereRadiance AtmosphereReference::trace(const glm::dvec3& position, const 
           const glm::dvec3 normal = glm::normalize(p);
           p = normal * bottom_;
           const double cosSun = glm::dot(normal, sun);
-          if (cosSun > 0.0 && (firstOrder || bounce > 0)) radiance += weight * albedo_[c] / kPi * cosSun * sunTransmittance(p, sun, 400)[c];
+          if (cosSun > 0.0 && scored) radiance += weight * albedo_[c] / kPi * cosSun * sunTransmittance(p, sun, 400)[c];
           weight *= albedo_[c];
           d = around(normal, std::sqrt(U(rng)), 2.0 * kPi * U(rng));
         } else {
@@ -146,7 +158,7 @@ AtmosphereRadiance AtmosphereReference::trace(const glm::dvec3& position, const 
           weight *= (sR + sM) / sT;  // survival of absorption by Mie and ozone
           const double nuSun = glm::dot(d, sun);
           const double phase = (sR * rayleighPhase(nuSun) + sM * cornetteShanks(nuSun, g_)) / (sR + sM);
-          if (firstOrder || bounce > 0) radiance += weight * phase * sunTransmittance(p, sun, 400)[c];
+          if (scored) radiance += weight * phase * sunTransmittance(p, sun, 400)[c];
           // the next direction: Rayleigh or Mie by their share, each phase by rejection (both are
           // bounded by a constant times uniform and Henyey–Greenstein respectively)
           double cosTheta;

@@ -9,6 +9,7 @@
 //     toward the sun at every vertex, Lambertian ground), one colour channel at a time.
 // Radiance is per unit sun irradiance (sr⁻¹). Positions are relative to the planet's centre, m.
 #include <cstdint>
+#include <functional>
 
 #include <glm/vec3.hpp>
 
@@ -34,6 +35,11 @@ class AtmosphereReference {
   glm::dvec3 singleScattering(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun,
                               int steps = 2000) const;
 
+  // The same with the sunlight reaching each point x (m, from the centre) scaled by
+  // sunVisibility(x) ∈ [0, 1], a shadow cast by something other than the air (a cloud's).
+  glm::dvec3 singleScattering(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun, int steps,
+                              const std::function<double(const glm::dvec3&)>& sunVisibility) const;
+
   // Radiance of all orders (sky only, not the sun's disc), by `paths` paths per channel.
   AtmosphereRadiance allOrders(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun,
                                int paths, std::uint64_t seed) const;
@@ -44,6 +50,12 @@ class AtmosphereReference {
   // orders with the Monte Carlo noise of the multiply-scattered share alone.
   AtmosphereRadiance multipleOrders(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun,
                                     int paths, std::uint64_t seed) const;
+
+  // Radiance of scattering order `order` alone (>= 2; a ground reflection counts as an order),
+  // by the same paths scored only at their (order − 1)-th vertex and stopped there: where the
+  // orders >= 2 go wrong, order by order.
+  AtmosphereRadiance singleOrder(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun, int order,
+                                 int paths, std::uint64_t seed) const;
 
   // Extinction and scattering coefficients at altitude h (m), m⁻¹.
   glm::dvec3 extinction(double h) const;
@@ -56,9 +68,11 @@ class AtmosphereReference {
   double distanceToGround(const glm::dvec3& p, const glm::dvec3& d) const;
   // Transmittance from p toward the unit sun direction (0 when the ground hides it).
   glm::dvec3 sunTransmittance(const glm::dvec3& p, const glm::dvec3& sun, int panels) const;
-  // The path tracer behind allOrders (firstOrder true) and multipleOrders (false).
+  // The path tracer behind allOrders, multipleOrders and singleOrder: it scores the next-event
+  // estimates of the orders firstScored … lastScored (order n at the path's n-th vertex) and
+  // stops after lastScored.
   AtmosphereRadiance trace(const glm::dvec3& position, const glm::dvec3& view, const glm::dvec3& sun, int paths,
-                           std::uint64_t seed, bool firstOrder) const;
+                           std::uint64_t seed, int firstScored, int lastScored) const;
 
   double bottom_, top_;
   glm::dvec3 rayleigh0_, ozone0_;

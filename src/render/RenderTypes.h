@@ -63,6 +63,9 @@ struct RenderSettings {
   // With view.lighting.atmosphere: the sky's scattering orders, 1 = single scattering only
   // (--sky-orders 1), 0 = all of them.
   int skyOrders = 0;
+  // With view.lighting.atmosphere and a sun volume: light shafts, the clouds' shadow on the air's
+  // single scattering of sunlight (shaders/sky_shafts.glsl; --no-light-shafts turns them off).
+  bool lightShafts = true;
 };
 
 // The sunlight each lighting model takes unless told otherwise.

@@ -1,6 +1,7 @@
 #include "render/SkyPass.h"
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -12,7 +13,8 @@ namespace cloudlut::render {
 namespace {
 
 constexpr int kTransmittanceUnit = 0, kMultipleUnit = 1, kIrradianceUnit = 2, kSkyViewUnit = 3;
-constexpr int kAerialInScatterUnit = 4, kAerialTransmittanceUnit = 5, kSunVolumeUnit = 6;
+constexpr int kAerialInScatterUnit = 4, kAerialTransmittanceUnit = 5, kSunVolumeUnit = 6, kAerialSingleUnit = 7;
+constexpr int kShaftLossUnit = 8;
 constexpr GLuint kColourBinding = 7, kDistanceBinding = 8;
 constexpr unsigned kCompositeGroup = 64, kTileGroup = 8;
 
@@ -48,29 +50,33 @@ SkyPass::SkyPass(const GlFunctions& gl, const GlContext& context)
   const std::string aerial = glslDefine("AERIAL_SIZE", kAerialSize) + glslDefine("AERIAL_SLICES", kAerialSlices);
   viewProgram_ = linkComputeProgram(gl, withFiles(kAtmosphereFiles, {"sky_view.comp.glsl"}), "");
   aerialProgram_ = linkComputeProgram(gl, withFiles(kAtmosphereFiles, {"sky_aerial.comp.glsl"}), aerial);
-  compositeProgram_ = linkComputeProgram(
-      gl, withFiles(kAtmosphereFiles, {"cloudlut_sampling.glsl", "cloudlut_shading.glsl", "sun_volume.glsl",
-                                       "sun_volume_chord.glsl", "sun_volume_sampling.glsl",
-                                       "sky_composite.comp.glsl"}),
-      aerial + SunVolume::samplingDefines());
+  const std::vector<std::string> sunFiles = withFiles(
+      kAtmosphereFiles, {"cloudlut_sampling.glsl", "cloudlut_shading.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
+                         "sun_volume_sampling.glsl", "sky_shafts.glsl"});
+  shaftsProgram_ = linkComputeProgram(gl, withFiles(sunFiles, {"sky_shafts.comp.glsl"}),
+                                      aerial + glslDefine("SHAFT_PIECES", kShaftPieces) + SunVolume::samplingDefines());
+  compositeProgram_ = linkComputeProgram(gl, withFiles(sunFiles, {"sky_composite.comp.glsl"}),
+                                         aerial + SunVolume::samplingDefines());
   skyView_ = createFloatTexture3D(gl, context, "the sky view", kSkyViewWidth, kSkyViewHeight, 1, 4, nullptr);
   aerialInScatter_ = createFloatTexture3D(gl, context, "the aerial perspective", kAerialSize, kAerialSize, kAerialSlices, 4, nullptr);
   aerialTransmittance_ = createFloatTexture3D(gl, context, "the aerial perspective", kAerialSize, kAerialSize, kAerialSlices, 4, nullptr);
+  aerialSingle_ = createFloatTexture3D(gl, context, "the aerial perspective", kAerialSize, kAerialSize, kAerialSlices, 4, nullptr);
   checkGlError(gl, "creating the sky pass");
 }
 
 SkyPass::~SkyPass() {
   for (GLuint* t : {&transmittanceTexture_, &multipleTexture_, &irradianceTexture_, &skyView_, &aerialInScatter_,
-                    &aerialTransmittance_})
+                    &aerialTransmittance_, &aerialSingle_, &shaftLoss_})
     deleteTexture(gl_, *t);
 }
 
 void SkyPass::setTables(const glsl::AtmosphereParameters& atmosphere, const Table4D& transmittance,
                         const Table4D& multipleScattering, const Table4D& irradiance) {
   for (const Table4D* t : {&transmittance, &multipleScattering, &irradiance})
-    if (t->channelCount() != 3 || t->dims()[2] != (t == &multipleScattering ? 2 : 1) || t->dims()[3] != 1)
+    if (t->channelCount() != 3 || t->dims()[2] != (t == &multipleScattering ? glsl::CLOUDLUT_MULTIPLE_BLOCKS : 1) ||
+        t->dims()[3] != 1)
       throw UsageError("table '" + t->name() + "' is not this version's atmosphere table (3 channels, 2 axes, " +
-                       (t == &multipleScattering ? "2 blocks)" : "1 block)"));
+                       (t == &multipleScattering ? std::to_string(glsl::CLOUDLUT_MULTIPLE_BLOCKS) + " blocks)" : "1 block)"));
   atmosphere_ = atmosphere;
   transmittance_ = transmittance;
   multiple_ = multipleScattering;
@@ -157,10 +163,32 @@ void SkyPass::composite(Image& image, const RenderSettings& s, const SunVolume& 
     u.set("uAerialMax", kAerialMaxMetres);
     gl_.BindImageTexture(0, aerialInScatter_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl_.BindImageTexture(1, aerialTransmittance_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl_.BindImageTexture(2, aerialSingle_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl_.DispatchCompute(groupsFor(kAerialSize, kTileGroup), groupsFor(kAerialSize, kTileGroup), 1);
   }
   fullBarrier(gl_);
-  // 3. the composite, in place on the image's buffers
+  // 3. the light shafts' loss, per screen cell
+  const bool shafts = s.lightShafts && sunBuilt;
+  if (shafts) {
+    const glm::ivec2 cells((image.width + kShaftCell - 1) / kShaftCell, (image.height + kShaftCell - 1) / kShaftCell);
+    if (cells != shaftCells_) {
+      deleteTexture(gl_, shaftLoss_);
+      shaftLoss_ = createFloatTexture3D(gl_, context_, "the light shafts", cells.x, cells.y, kAerialSlices, 4, nullptr);
+      shaftCells_ = cells;
+    }
+    gl_.UseProgram(shaftsProgram_.id());
+    const ProgramUniforms u(gl_, shaftsProgram_.id());
+    setCommonUniforms(u, s);
+    u.set("uAerialMax", kAerialMaxMetres);
+    u.set("uLaterAsymmetry", laterAsymmetry);
+    bindTexture3D(gl_, u, "uAerialSingle", kAerialSingleUnit, aerialSingle_);
+    sun.bind(u, kSunVolumeUnit);
+    gl_.BindImageTexture(0, shaftLoss_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl_.DispatchCompute(groupsFor(static_cast<std::size_t>(cells.x), kTileGroup),
+                        groupsFor(static_cast<std::size_t>(cells.y), kTileGroup), 1);
+    fullBarrier(gl_);
+  }
+  // 4. the composite, in place on the image's buffers
   colour_.assign(image.rgba.data(), pixels * 16);
   distance_.assign(image.distance.data(), pixels * 4);
   gl_.UseProgram(compositeProgram_.id());
@@ -170,6 +198,8 @@ void SkyPass::composite(Image& image, const RenderSettings& s, const SunVolume& 
     bindTexture3D(gl_, u, "uSkyView", kSkyViewUnit, skyView_);
     bindTexture3D(gl_, u, "uAerialInScatter", kAerialInScatterUnit, aerialInScatter_);
     bindTexture3D(gl_, u, "uAerialTransmittance", kAerialTransmittanceUnit, aerialTransmittance_);
+    bindTexture3D(gl_, u, "uShaftLoss", kShaftLossUnit, shaftLoss_);
+    u.set("uShafts", shafts ? 1 : 0);
     u.set("uAerialMax", kAerialMaxMetres);
     gl_.Uniform2i(u.location("uSize"), image.width, image.height);
     u.set("uFirstRow", 0);

@@ -4,13 +4,20 @@
 // setTables). Per frame, on the GPU:
 //   sky view     192 × 108 in-scattered radiance toward every direction from the camera
 //                (shaders/sky_view.comp.glsl; Hillaire 2020 §5.3);
-//   aerial       32 × 32 × 32 in-scattering and transmittance over the camera's frustum to
-//                100 km (shaders/sky_aerial.comp.glsl; Hillaire 2020 §5.4);
+//   aerial       32 × 32 × 32 in-scattering, its single scattering of sunlight and transmittance
+//                over the camera's frustum to 100 km (shaders/sky_aerial.comp.glsl; Hillaire
+//                2020 §5.4);
+//   shafts       with light shafts and a sun volume: the single scattering the clouds' shadow
+//                takes from the air (seed §5.6), per screen cell of kShaftCell² pixels at the
+//                aerial slices, kShaftPieces sun-volume samples per slice's stretch of the ray
+//                inside the volume (shaders/sky_shafts.comp.glsl, sky_shafts.glsl);
 //   composite    sky, sun disc, ground lit through the clouds' shadow, aerial perspective on
-//                the clouds (shaders/sky_composite.comp.glsl).
+//                the clouds, the shafts' loss (shaders/sky_composite.comp.glsl).
 // The clouds' sunlight and ambient come from the same tables (cloudLighting).
 #include <array>
 #include <string>
+
+#include <glm/vec2.hpp>
 
 #include "core/Glsl.h"
 #include "core/Table4D.h"
@@ -51,6 +58,8 @@ class SkyPass {
   static constexpr int kSkyViewWidth = 192, kSkyViewHeight = 108;
   static constexpr int kAerialSize = 32, kAerialSlices = 32;
   static constexpr float kAerialMaxMetres = 100e3f;
+  static constexpr int kShaftCell = 8;    // pixels per side of a light-shaft cell
+  static constexpr int kShaftPieces = 4;  // sun-volume samples per aerial slice
 
  private:
   void setCommonUniforms(const ProgramUniforms& u, const RenderSettings& s) const;
@@ -60,8 +69,10 @@ class SkyPass {
   glsl::AtmosphereParameters atmosphere_ = glsl::defaultAtmosphere();
   Table4D transmittance_, multiple_, irradiance_;
   GLuint transmittanceTexture_ = 0, multipleTexture_ = 0, irradianceTexture_ = 0;
-  GLuint skyView_ = 0, aerialInScatter_ = 0, aerialTransmittance_ = 0;
-  GlProgram viewProgram_, aerialProgram_, compositeProgram_;
+  GLuint skyView_ = 0, aerialInScatter_ = 0, aerialTransmittance_ = 0, aerialSingle_ = 0;
+  GLuint shaftLoss_ = 0;          // cells × AERIAL_SLICES, sized for shaftCells_
+  glm::ivec2 shaftCells_{0, 0};
+  GlProgram viewProgram_, aerialProgram_, shaftsProgram_, compositeProgram_;
   StorageBuffer colour_, distance_;
 };
 

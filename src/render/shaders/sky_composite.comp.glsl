@@ -4,20 +4,22 @@
 //                   (sunDiscRadiance) through T to the top, or, where the ray meets the ground,
 //                   the ground's radiance (groundRadiance, sunlight through the clouds' shadow
 //                   exp(−τ) of the sun volume) through T to the ground;
-//   L = T(d) Lc + A S(d) + (1 − A) Lb   (S, T from the aerial-perspective volume; seed §5.6).
-// Writes L into the colour buffer in place (A kept). Needs sky_uniforms.glsl and the sun volume's
-// sampling code.
+//   L = T(d) Lc + A S(d) + (1 − A) Lb   (S, T from the aerial-perspective volume; seed §5.6),
+// with the light shafts' losses ΔL (sky_shafts.glsl, from the shafts volume) taken from S(d) and
+// from Lb's in-scattering.
+// Writes L into the colour buffer in place (A kept). Needs sky_uniforms.glsl, the sun volume's
+// sampling code and sky_shafts.glsl.
 layout(local_size_x = 64) in;
 layout(std430, binding = 7) buffer Colour { vec4 colour[]; };
 layout(std430, binding = 8) readonly buffer Distance { float distanceTo[]; };
 uniform sampler3D uSkyView;     // depth 1
 uniform sampler3D uAerialInScatter;
 uniform sampler3D uAerialTransmittance;
-uniform float uAerialMax;
 uniform ivec2 uSize;
 uniform int uFirstRow;
 uniform float uNoDistance;
-uniform float uLaterAsymmetry;  // mean cosine of the clouds' later phase function (slabTransmittance)
+uniform sampler3D uShaftLoss;  // the light shafts' loss ΔL at the aerial slices, per screen cell
+uniform bool uShafts;          // light shafts on (a volume was built and uShaftLoss is filled)
 
 void main() {
   int x = int(gl_GlobalInvocationID.x), row = int(gl_GlobalInvocationID.y);
@@ -31,6 +33,16 @@ void main() {
   vec2 skyUv = skyViewUv(d);
   vec2 viewSize = vec2(textureSize(uSkyView, 0).xy);
   vec3 inScatter = texture(uSkyView, vec3(lutTexCoord(skyUv.x, viewSize.x), lutTexCoord(skyUv.y, viewSize.y), 0.5)).rgb;
+  vec4 c = colour[i];
+  float dist = distanceTo[i];
+  bool cloud = c.a > 0.0 && dist < uNoDistance;
+  // the light shafts' losses to the ray's end and to the clouds (0 when the shafts are off)
+  vec3 lossFar = vec3(0.0), lossNear = vec3(0.0);
+  if (uShafts) {
+    lossFar = cumulativeAt(uShaftLoss, uv, distanceToAtmosphereEnd(uAtmosphere, r, mu));
+    if (cloud) lossNear = cumulativeAt(uShaftLoss, uv, dist);
+  }
+  inScatter = max(inScatter - lossFar, vec3(0.0));
   vec3 background;
   if (ground) {
     float t = distanceToGround(uAtmosphere, r, mu);
@@ -41,10 +53,8 @@ void main() {
   } else {
     background = inScatter + transmittanceToTop(uAtmosphere, uTransmittance, r, mu) * sunDiscRadiance(dot(d, uSun));
   }
-  vec4 c = colour[i];
-  float dist = distanceTo[i];
   vec3 L = background;
-  if (c.a > 0.0 && dist < uNoDistance) {
+  if (cloud) {
     float w = sqrt(clamp(dist / uAerialMax, 0.0, 1.0)) * float(AERIAL_SLICES) - 1.0;  // slice coordinate
     vec3 tc = vec3(uv, (max(w, 0.0) + 0.5) / float(AERIAL_SLICES));
     vec3 S = texture(uAerialInScatter, tc).rgb, T = texture(uAerialTransmittance, tc).rgb;
@@ -53,7 +63,7 @@ void main() {
       S *= f;
       T = mix(vec3(1.0), T, f);
     }
-    L = T * c.rgb + c.a * S + (1.0 - c.a) * background;
+    L = T * c.rgb + c.a * max(S - lossNear, vec3(0.0)) + (1.0 - c.a) * background;
   } else if (c.a > 0.0) {
     L = c.rgb + (1.0 - c.a) * background;
   }
