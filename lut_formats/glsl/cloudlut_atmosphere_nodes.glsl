@@ -16,7 +16,6 @@ CLOUDLUT_FN vec3 multipleScatteringNode(AtmosphereParameters a, AtmosphereTextur
                                         int dirs, int steps) {
   vec3 sunDir = vec3(sqrt(max(1.0f - muS * muS, 0.0f)), muS, 0.0f);
   vec3 L2 = vec3(0.0f), fms = vec3(0.0f);
-  float n = float(steps);
   for (int j = 0; j < dirs; ++j) {
     float cosTheta = 1.0f - 2.0f * (float(j) + 0.5f) / float(dirs);
     float sinTheta = sqrt(max(1.0f - cosTheta * cosTheta, 0.0f));
@@ -28,11 +27,8 @@ CLOUDLUT_FN vec3 multipleScatteringNode(AtmosphereParameters a, AtmosphereTextur
       float tMax = distanceToAtmosphereEnd(a, r, mu);
       vec3 T = vec3(1.0f), L = vec3(0.0f), F = vec3(0.0f);
       for (int i = 0; i < steps; ++i) {
-        float f0 = float(i) / n, f1 = float(i + 1) / n, fm = (float(i) + 0.5f) / n;
-        float dt = tMax * (f1 * f1 - f0 * f0), t = tMax * fm * fm;
-        float rt = clamp(radiusAlongRay(r, mu, t), a.bottomRadius, a.topRadius);
-        float h = rt - a.bottomRadius;
-        float muSt = clamp((r * muS + t * nu) / rt, -1.0f, 1.0f);
+        AtmosphereRayStep st = atmosphereRayStep(a, r, mu, muS, nu, tMax, i, steps);
+        float dt = st.dt, rt = st.rt, h = st.h, muSt = st.muSt;
         vec3 sigmaT = atmosphereExtinction(a, h);
         vec3 sigmaS = rayleighScatteringAt(a, h) + vec3(mieScatteringAt(a, h));
         vec3 stepT = exp(-sigmaT * dt);
@@ -134,7 +130,6 @@ CLOUDLUT_FN ScatteringOrder scatteringOrderNode(AtmosphereParameters a, Atmosphe
   o.dipoleX = vec3(0.0f);
   o.dipoleY = vec3(0.0f);
   o.irradiance = vec3(0.0f);
-  float n = float(steps);
   for (int j = 0; j < dirs; ++j) {
     // zenith bin j between the edges orderBinCosine(1 − 2j/dirs) and orderBinCosine(1 − 2(j + 1)/dirs),
     // sampled at the image of its middle; its share of the sphere is half its width in cos θ
@@ -150,11 +145,8 @@ CLOUDLUT_FN ScatteringOrder scatteringOrderNode(AtmosphereParameters a, Atmosphe
       float tMax = distanceToAtmosphereEnd(a, r, mu);
       vec3 T = vec3(1.0f), L = vec3(0.0f);
       for (int i = 0; i < steps; ++i) {
-        float f0 = float(i) / n, f1 = float(i + 1) / n, fm = (float(i) + 0.5f) / n;
-        float dt = tMax * (f1 * f1 - f0 * f0), t = tMax * fm * fm;
-        float rt = clamp(radiusAlongRay(r, mu, t), a.bottomRadius, a.topRadius);
-        float h = rt - a.bottomRadius;
-        float muSt = clamp((r * muS + t * nu) / rt, -1.0f, 1.0f);
+        AtmosphereRayStep st = atmosphereRayStep(a, r, mu, muS, nu, tMax, i, steps);
+        float dt = st.dt, t = st.t, rt = st.rt, h = st.h, muSt = st.muSt;
         vec3 sigmaT = atmosphereExtinction(a, h);
         vec3 sR = rayleighScatteringAt(a, h);
         float sM = mieScatteringAt(a, h);

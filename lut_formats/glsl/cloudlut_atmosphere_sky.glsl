@@ -20,12 +20,33 @@ struct SkySegment {
   vec3 transmittance;  // dimensionless
 };
 
+// Piece i of `steps` of the ray segment [0, tMax] (m) from radius r (m) with zenith cosine mu,
+// the sun at zenith cosine muS and at cosine nu from the ray. The pieces' ends grow as
+// (i / steps)², so they are short near the start where the air is densest along a level ray:
+// dt its length and t its middle (m), rt the radius there (m, clamped to the atmosphere), h the
+// altitude (m) and muSt the sun's zenith cosine at that point.
+struct AtmosphereRayStep {
+  float dt, t, rt, h, muSt;
+};
+CLOUDLUT_FN AtmosphereRayStep atmosphereRayStep(AtmosphereParameters a, float r, float mu, float muS, float nu,
+                                                float tMax, int i, int steps) {
+  float n = float(steps);
+  float f0 = float(i) / n, f1 = float(i + 1) / n, fm = (float(i) + 0.5f) / n;
+  AtmosphereRayStep s;
+  s.dt = tMax * (f1 * f1 - f0 * f0);
+  s.t = tMax * fm * fm;
+  s.rt = clamp(radiusAlongRay(r, mu, s.t), a.bottomRadius, a.topRadius);
+  s.h = s.rt - a.bottomRadius;
+  s.muSt = clamp((r * muS + s.t * nu) / s.rt, -1.0f, 1.0f);
+  return s;
+}
+
 // The segment [0, tMax] (m) of the ray from radius r (m) with zenith cosine mu, the sun at zenith
 // cosine muS and at cosine nu from the ray: L = ∫ T(0, t) J(t) dt, T = exp(−∫ σt), with the
 // source J = (σs_R P_R(nu) + σs_M P_M(nu)) T_sun + msWeight · multipleScatteringSource (single
 // scattering, Bruneton & Neyret 2008 eq. 4; orders ≥ 2, Hillaire 2020 §5.5.2 eq. 11 with the
 // phase functions applied to the field's moments, multipleScatteringSource). The
-// segment is cut into `steps` pieces whose ends grow as (i / steps)², each integrated exactly
+// segment is cut into `steps` pieces (atmosphereRayStep), each integrated exactly
 // for a source and extinction constant over it (Hillaire 2015, energy-conserving integration).
 // msWeight = 0 gives single scattering only (--sky-orders 1).
 CLOUDLUT_FN SkySegment integrateSkySegment(AtmosphereParameters a, AtmosphereTexture transmittanceTable,
@@ -36,14 +57,9 @@ CLOUDLUT_FN SkySegment integrateSkySegment(AtmosphereParameters a, AtmosphereTex
   s.radiance = vec3(0.0f);
   s.single = vec3(0.0f);
   s.transmittance = vec3(1.0f);
-  float n = float(steps);
   for (int i = 0; i < steps; ++i) {
-    float f0 = float(i) / n, f1 = float(i + 1) / n, fm = (float(i) + 0.5f) / n;
-    float t0 = tMax * f0 * f0, t1 = tMax * f1 * f1, t = tMax * fm * fm;
-    float dt = t1 - t0;
-    float rt = clamp(radiusAlongRay(r, mu, t), a.bottomRadius, a.topRadius);
-    float h = rt - a.bottomRadius;
-    float muSt = clamp((r * muS + t * nu) / rt, -1.0f, 1.0f);
+    AtmosphereRayStep st = atmosphereRayStep(a, r, mu, muS, nu, tMax, i, steps);
+    float dt = st.dt, t = st.t, rt = st.rt, h = st.h, muSt = st.muSt;
     vec3 sigmaT = atmosphereExtinction(a, h);
     vec3 sR = rayleighScatteringAt(a, h);
     float sM = mieScatteringAt(a, h);
