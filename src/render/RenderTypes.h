@@ -63,6 +63,9 @@ struct RenderSettings {
   // With view.lighting.atmosphere: the sky's scattering orders, 1 = single scattering only
   // (--sky-orders 1), 0 = all of them.
   int skyOrders = 0;
+  // The density's detail noise (seed §5.4, core/DetailNoise.h): the optical depth of each chord
+  // times the mean of the density factor along it; amplitude 0 = off.
+  DetailNoise detail;
 };
 
 // The sunlight each lighting model takes unless told otherwise.
