@@ -47,7 +47,7 @@ TEST_CASE("noise rotation: the renderer and the path tracer turn the reference p
   const scene::View view = scene::resolveView(s, {});
 
   reference::ScenePtSettings pt;
-  pt.samplesPerPixel = 192;
+  pt.samplesPerPixel = 1024;
   const io::ExrImage refTurned = reference::renderReferenceScene(turned, view, medium, pt, kWidth, kHeight);
   const io::ExrImage refPlain = reference::renderReferenceScene(plain, view, medium, pt, kWidth, kHeight);
   render::RenderSettings rs;
@@ -70,13 +70,15 @@ TEST_CASE("noise rotation: the renderer and the path tracer turn the reference p
               matched.noiseCorrectedRelativeRmse, matched.alphaRmse, plainMatched.noiseCorrectedRelativeRmse,
               plainMatched.alphaRmse, rendererIgnores.noiseCorrectedRelativeRmse, rendererIgnores.alphaRmse,
               tracerIgnores.noiseCorrectedRelativeRmse, tracerIgnores.alphaRmse, matched.referenceNoise);
-  CHECK(matched.referenceNoise < 0.2);
+  // Measured (64×40, 1024 paths a pixel): matched 0.043 / 0.0114, both unturned 0.030 / 0.0123,
+  // renderer unturned 0.084 / 0.0495, path tracer unturned 0.078 / 0.0520; reference noise 0.077.
+  CHECK(matched.referenceNoise < 0.12);
   // Turning both sides is as good as turning neither (the same model error, other noise).
   CHECK(matched.noiseCorrectedRelativeRmse < plainMatched.noiseCorrectedRelativeRmse + 0.03);
   CHECK(matched.alphaRmse < 1.3 * plainMatched.alphaRmse);
   // Either side ignoring the rotation is clearly worse.
   for (const reference::ImageErrors* wrong : {&rendererIgnores, &tracerIgnores}) {
-    CHECK(matched.alphaRmse < 0.6 * wrong->alphaRmse);
-    CHECK(matched.noiseCorrectedRelativeRmse < wrong->noiseCorrectedRelativeRmse);
+    CHECK(matched.alphaRmse < 0.5 * wrong->alphaRmse);
+    CHECK(matched.noiseCorrectedRelativeRmse < 0.8 * wrong->noiseCorrectedRelativeRmse);
   }
 }
