@@ -1,6 +1,6 @@
 // Cloudscape level of detail and structure (issue 14): the tables' reference radius reaches the
 // generator, the column optical depth is the same in every ring (camera above a square of sky vs
-// 60 km away from it), particles stay in the layer with densities in the tables' range, ring
+// 60 km away from it, and each ring alone over the same square), particles stay in the layer with densities in the tables' range, ring
 // borders do not show over a slow camera move, the dump of a cloudscape renders like the
 // cloudscape, and neighbouring particles turn the reference particle differently.
 #include <catch2/catch.hpp>
