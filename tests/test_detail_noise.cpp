@@ -54,9 +54,15 @@ TEST_CASE("detail noise: the chord factor is 1 when off and the density factor's
   d.amplitude = 0.8f;
   d.scale = 2.0f;
   const glm::vec4 k = d.packed();
-  // A chord shorter than the feature size: the factor at its midpoint.
-  const glm::vec3 a(1.0f, 2.0f, 3.0f), b(1.5f, 2.2f, 3.1f);
+  // A chord shorter than the finest wavelength (s/4): the factor at its midpoint.
+  const glm::vec3 a(1.0f, 2.0f, 3.0f), b(1.2f, 2.1f, 3.1f);
   CHECK(glsl::detailChordFactor(a, b, k) == glsl::detailDensityFactor(0.5f * (a + b), k));
+  // A chord of 4 feature sizes: 4 points, the coarsest octave alone (the finer ones at their mean 0).
+  const glm::vec3 c = a + glm::vec3(8.0f, 0.0f, 0.0f);
+  double coarse = 0;
+  for (int i = 0; i < 4; ++i)
+    coarse += glsl::detailNoiseOctaves(glm::mix(a, c, (float(i) + 0.5f) / 4.0f) * k.y, 1u, 1);
+  CHECK(glsl::detailChordFactor(a, c, k) == Approx(1.0 + 0.8 * coarse / 4.0).epsilon(1e-6));
   // Over many random chords the factor averages to 1 (the mean optical depth is kept).
   reference::McRng rng(3, 0, 0);
   double sum = 0, lo = 2, hi = 0;

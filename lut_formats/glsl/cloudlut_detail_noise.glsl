@@ -58,33 +58,39 @@ CLOUDLUT_FN float detailGradientNoise(vec3 p, uint seed) {
 const int CLOUDLUT_DETAIL_OCTAVES = 3;
 const float CLOUDLUT_DETAIL_GAIN = 3.2f;
 
-// n(p) ∈ [−1, 1]: three octaves of gradient noise (wavelengths 1, 1/2, 1/4 lattice units,
-// amplitudes 1, 1/2, 1/4), normalised by the amplitudes' sum, times the gain, clamped.
-CLOUDLUT_FN float detailNoise(vec3 p, uint seed) {
+// The first `octaves` octaves of n (wavelengths 1, 1/2, 1/4 lattice units, amplitudes 1, 1/2,
+// 1/4), the others taken at their mean 0, normalised by the sum of all the amplitudes (1.75),
+// times the gain, clamped to [−1, 1].
+CLOUDLUT_FN float detailNoiseOctaves(vec3 p, uint seed, int octaves) {
   float sum = 0.0f;
   float amplitude = 1.0f;
-  float norm = 0.0f;
-  for (int o = 0; o < CLOUDLUT_DETAIL_OCTAVES; ++o) {
+  for (int o = 0; o < octaves; ++o) {
     sum += amplitude * detailGradientNoise(p, detailHash(seed + uint(o)));
-    norm += amplitude;
     amplitude *= 0.5f;
     p = p * 2.0f + vec3(19.19f, 7.31f, 13.7f);  // each octave off the lattice of the one before
   }
-  return clamp(CLOUDLUT_DETAIL_GAIN * sum / norm, -1.0f, 1.0f);
+  return clamp(CLOUDLUT_DETAIL_GAIN * sum / 1.75f, -1.0f, 1.0f);
 }
+
+// n(p) ∈ [−1, 1]: all three octaves.
+CLOUDLUT_FN float detailNoise(vec3 p, uint seed) { return detailNoiseOctaves(p, seed, CLOUDLUT_DETAIL_OCTAVES); }
 
 // m(x) = 1 + a · n(x / s): the density factor at the world point x (dimensionless, in [1 − a, 1 + a]).
 CLOUDLUT_FN float detailDensityFactor(vec3 x, vec4 d) {
   return 1.0f + d.x * detailNoise(x * d.y, uint(d.z));
 }
 
-// The mean of m along the world segment [a, b] by the midpoint rule, one point per feature size
-// (1 to 4 points): the factor of a chord's optical depth, τ' = τ · mean(m) (the exact mean under a
-// density uniform along the chord). 1 exactly when the detail is off (d.x = 0).
+// The mean of m along the world segment [a, b] of length L (the factor of a chord's optical depth,
+// τ' = τ · mean(m); exact under a density uniform along the chord): the midpoint rule at
+// k = clamp(⌈L/s⌉, 1, 4) points, over the octaves whose wavelength s/2^o is at least the spacing
+// L/k; the finer ones, sampled less than once per wavelength, are taken at their chord mean's
+// expectation, 0 (a smaller error than their value at a few points). 1 exactly when off (d.x = 0).
 CLOUDLUT_FN float detailChordFactor(vec3 a, vec3 b, vec4 d) {
   if (!(d.x > 0.0f)) return 1.0f;
-  float n = clamp(ceil(length(b - a) * d.y), 1.0f, 4.0f);
+  float len = length(b - a) * d.y;  // L / s
+  float k = clamp(ceil(len), 1.0f, 4.0f);
+  int octaves = clamp(int(floor(log2(k / max(len, 1e-6f)))) + 1, 1, CLOUDLUT_DETAIL_OCTAVES);
   float sum = 0.0f;
-  for (float k = 0.5f; k < n; k += 1.0f) sum += detailDensityFactor(mix(a, b, k / n), d);
-  return sum / n;
+  for (float i = 0.5f; i < k; i += 1.0f) sum += detailNoiseOctaves(mix(a, b, i / k) * d.y, uint(d.z), octaves);
+  return 1.0f + d.x * sum / k;
 }

@@ -15,6 +15,8 @@ using glm::clamp;
 using glm::dot;
 using glm::floor;
 using glm::length;
+using glm::log2;
+using glm::max;
 using glm::mix;
 using glm::vec3;
 using glm::vec4;
