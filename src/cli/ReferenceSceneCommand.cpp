@@ -41,6 +41,7 @@ int runReferenceScene(int argc, char** argv) {
     ("threads", "worker threads (0 = all cores)", cxxopts::value<int>()->default_value("0"))
     ("quiet", "no progress bar, no summary");
   addViewOptions(options);
+  addDetailNoiseOption(options);
   addMediumOptions(options, true);
   cxxopts::ParseResult args;
   if (!parseOptions(options, argc, argv, args)) return kExitOk;
@@ -68,13 +69,14 @@ int runReferenceScene(int argc, char** argv) {
   const scene::ViewSettings overrides = parseViewOverrides(args);
   const scene::Scene scene = scene::readScene(args["particles"].as<std::string>());
   const scene::View view = scene::resolveView(scene, overrides);
+  const DetailNoise detail = parseDetailNoise(args, scene.detail, scene::defaultDetailNoise(scene.particles));
 
   const bool quiet = args.count("quiet") > 0;
   reference::ReferenceSceneStats stats;
   io::ExrImage image;
   try {
     image = reference::renderReferenceScene(scene.particles, view, medium, st, static_cast<int>(width),
-                                            static_cast<int>(height), makeTtyProgress(quiet), &stats);
+                                            static_cast<int>(height), makeTtyProgress(quiet), &stats, detail);
   } catch (const std::invalid_argument& e) {  // a particle too thick to trace
     throw FileError(args["particles"].as<std::string>(), e.what());
   } catch (const reference::WorkLimitExceeded& e) {

@@ -79,6 +79,7 @@ int runRender(int argc, char** argv) {
     ("dump-particles", "cloudscapes: write every particle the grid generates around the camera (before frustum culling, level-of-detail fade in the density) as a particle scene FILE.json; --out optional", cxxopts::value<std::string>())
     ("quiet", "print nothing on success");
   addViewOptions(options);      // camera and light: cli/SceneOptions.h
+  addDetailNoiseOption(options);
   addRayMarchOptions(options);  // --method raymarch: cli/SceneOptions.h
   cxxopts::ParseResult args;
   if (!parseOptions(options, argc, argv, args)) return kExitOk;
@@ -136,6 +137,7 @@ int runRender(int argc, char** argv) {
   const scene::Scene& scene = drawn.scene;
   const scene::CloudscapeScene& cloudscape = drawn.cloudscape;
   settings.view = drawn.view;
+  settings.detail = drawn.detail;
   // --path FILE: the cameras and suns of a recorded flight (cloudlut view --record), one frame each.
   std::optional<scene::CameraPath> path;
   if (args.count("path")) {
@@ -166,7 +168,7 @@ int runRender(int argc, char** argv) {
     for (const scene::GridParticle& p : g.particles) list.push_back(p.particle);
     const std::string file = args["dump-particles"].as<std::string>();
     io::writeFileAtomically(file, scene::sceneText(scene::sceneDocument(
-                                      list, settings.view, "cloudscape " + cloudscape.name + ", quality " + quality.name)));
+                                      list, settings.view, "cloudscape " + cloudscape.name + ", quality " + quality.name, drawn.detail)));
     if (!args.count("quiet"))
       std::printf("wrote %s: %zu particles%s\n", file.c_str(), list.size(),
                   list.size() > scene::kMaxRenderParticles ? " (more than render --particles takes: use --quality low)" : "");

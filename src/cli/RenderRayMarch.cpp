@@ -20,6 +20,8 @@ namespace cloudlut::cli {
 int runRayMarchRender(const cxxopts::ParseResult& args) {
   for (const char* required : {"particles", "out"})
     if (!args.count(required)) throw UsageError(std::string("missing --") + required);
+  if (args.count("detail-noise") && args["detail-noise"].as<std::string>() != "off")
+    throw UsageError("--detail-noise applies to --method particles (the ray marcher has no detail noise)");
   const std::filesystem::path out = args["out"].as<std::string>();
   std::string ext = out.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

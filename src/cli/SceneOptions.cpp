@@ -27,7 +27,25 @@ DrawnScene loadDrawnScene(const cxxopts::ParseResult& args) {
     if (!d.scene.view.eye && !overrides.eye) d.scene.view.eye = glm::vec3(0.0f, 600.0f, 0.0f);
   }
   d.view = scene::resolveView(d.scene, overrides);
+  DetailNoise fallback = scene::defaultDetailNoise(d.scene.particles);
+  if (!d.particles) fallback.scale = scene::kDefaultDetailScaleFraction * d.cloudscape.cloud.cellSize *
+                                     d.cloudscape.cloud.particleSize.y;  // of the largest ring-0 particle
+  d.detail = parseDetailNoise(args, d.particles ? d.scene.detail : d.cloudscape.detail, fallback);
   return d;
+}
+
+void addDetailNoiseOption(cxxopts::Options& options) {
+  options.add_options()("detail-noise", "the density's detail noise: on (the scene's \"detail_noise\", else a "
+                        "default) or off (default: the scene's; cloudscape presets have it)", cxxopts::value<std::string>());
+}
+
+DetailNoise parseDetailNoise(const cxxopts::ParseResult& args, const std::optional<DetailNoise>& fromScene,
+                             const DetailNoise& fallback) {
+  if (!args.count("detail-noise")) return fromScene.value_or(DetailNoise{});
+  const std::string v = args["detail-noise"].as<std::string>();
+  if (v == "off") return DetailNoise{};
+  if (v == "on") return fromScene && fromScene->enabled() ? *fromScene : fallback;
+  throw UsageError("--detail-noise: expected on or off, got '" + v + "'");
 }
 
 void addViewOptions(cxxopts::Options& options) {

@@ -24,8 +24,16 @@ struct DrawnScene {
   scene::Scene scene;
   scene::CloudscapeScene cloudscape;
   scene::View view;
+  DetailNoise detail;  // the detail noise drawn (parseDetailNoise); amplitude 0 = off
 };
 DrawnScene loadDrawnScene(const cxxopts::ParseResult& args);
+
+// --detail-noise off|on: the density's detail noise (seed §5.4, core/DetailNoise.h).
+void addDetailNoiseOption(cxxopts::Options& options);
+// The detail noise of `scene` as the command line asks: without the option, the scene's
+// "detail_noise" (none when absent); off: none; on: the scene's, else `fallback`.
+DetailNoise parseDetailNoise(const cxxopts::ParseResult& args, const std::optional<DetailNoise>& fromScene,
+                             const DetailNoise& fallback);
 
 // --density-model, --model-seed, --extinction, --radius and the phase options (cli/Options.h),
 // each overriding the LUT set's value (io/LutSetMedium.h) when --luts is given, else the

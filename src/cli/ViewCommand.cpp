@@ -47,6 +47,7 @@ int runView(int argc, char** argv) {
     ("screenshot-dir", "where F12 writes cloudlut_NNNN.png", cxxopts::value<std::string>()->default_value("."))
     ("record", "write the flight as a camera path on exit (render it with cloudlut render --path FILE)", cxxopts::value<std::string>());
   addViewOptions(options);  // camera and light: cli/SceneOptions.h
+  addDetailNoiseOption(options);
   cxxopts::ParseResult args;
   if (!parseOptions(options, argc, argv, args)) return kExitOk;
   if (!args.count("luts")) throw UsageError("missing --luts");
@@ -76,6 +77,7 @@ int runView(int argc, char** argv) {
   o.scene = std::move(drawn.scene);
   o.cloudscape = std::move(drawn.cloudscape);
   o.settings.view = drawn.view;
+  o.settings.detail = drawn.detail;
   o.settings.blend = args.count("blend") ? render::parseBlendMode(args["blend"].as<std::string>())
                                          : o.particles ? render::BlendMode::Alpha : render::BlendMode::Volume;
   o.lutSets = view::findLutSets(args["luts"].as<std::string>());

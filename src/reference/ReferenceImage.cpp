@@ -11,11 +11,13 @@ namespace cloudlut::reference {
 
 io::ExrImage renderReferenceScene(const std::vector<scene::Particle>& particles, const scene::View& view,
                                   const Medium& medium, const ScenePtSettings& settings, int width,
-                                  int height, const ProgressFn& progress, ReferenceSceneStats* stats) {
+                                  int height, const ProgressFn& progress, ReferenceSceneStats* stats,
+                                  const DetailNoise& detail) {
   const ReferenceParticle model(medium.model, medium.seed);
   SceneMedium m;
   m.model = &model;
   m.unitOpticalRadius = medium.unitOpticalRadius();
+  m.detail = detail.packed();
   for (const scene::Particle& p : particles)
     m.particles.push_back({glm::dvec3(p.center), glm::dmat3(p.toParticle()), static_cast<double>(p.density)});
   if (const std::string problem = mediumWorkProblem(m); !problem.empty())
@@ -55,14 +57,17 @@ io::ExrImage renderReferenceScene(const std::vector<scene::Particle>& particles,
     out.channel("multiple")[i] = static_cast<float>(e.multiple);
     out.channel("ambient")[i] = static_cast<float>(e.sky);
   }
-  char buf[512];
+  char buf[640];
   std::snprintf(buf, sizeof buf,
                 "{\"density_model\": \"%s\", \"seed\": %llu, \"unit_optical_radius\": %.9g, \"first_phase\": [%d, %.6g], "
-                "\"later_phase\": [%d, %.6g], \"spp\": %d, \"rng_seed\": %llu, \"max_order\": %d, \"jitter\": %s}",
+                "\"later_phase\": [%d, %.6g], \"spp\": %d, \"rng_seed\": %llu, \"max_order\": %d, \"jitter\": %s, "
+                "\"detail_noise\": [%.6g, %.9g, %d]}",
                 toString(medium.model).c_str(), static_cast<unsigned long long>(medium.seed), medium.unitOpticalRadius(),
                 glslKind(st.first.kind), static_cast<double>(st.first.param), glslKind(st.later.kind),
                 static_cast<double>(st.later.param),
-                st.samplesPerPixel, static_cast<unsigned long long>(st.seed), st.maxOrder, st.jitter ? "true" : "false");
+                st.samplesPerPixel, static_cast<unsigned long long>(st.seed), st.maxOrder, st.jitter ? "true" : "false",
+                static_cast<double>(detail.enabled() ? detail.amplitude : 0.0f), static_cast<double>(detail.scale),
+                detail.seed);
   out.attributes["cloudlutReference"] = buf;
   return out;
 }

@@ -28,8 +28,10 @@ struct ReferenceSceneStats {
 // medium and the settings as JSON. `stats` (optional) receives the time and mean path length.
 // std::invalid_argument (mediumWorkProblem's message) when a particle is too thick to trace;
 // WorkLimitExceeded when settings.maxSeconds passes.
+// `detail`: the density's detail noise (core/DetailNoise.h; off by default), the renderer's.
 io::ExrImage renderReferenceScene(const std::vector<scene::Particle>& particles, const scene::View& view,
                                   const Medium& medium, const ScenePtSettings& settings, int width, int height,
-                                  const ProgressFn& progress = {}, ReferenceSceneStats* stats = nullptr);
+                                  const ProgressFn& progress = {}, ReferenceSceneStats* stats = nullptr,
+                                  const DetailNoise& detail = {});
 
 }  // namespace cloudlut::reference

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
 
+#include "core/DetailNoise.h"
 #include "core/Glsl.h"
 #include "reference/ParticleBvh.h"
 
@@ -41,7 +42,8 @@ struct Scratch {
 // the spans (and every sum over them) are the same bit for bit.
 class RaySpans {
  public:
-  RaySpans(const SceneMedium& m, const glm::dvec3& origin, const glm::dvec3& dir, Scratch& scratch, double tMax = kInf) {
+  RaySpans(const SceneMedium& m, const glm::dvec3& origin, const glm::dvec3& dir, Scratch& scratch, double tMax = kInf)
+      : rayOrigin(origin), rayDir(dir), detailBound(1.0 + static_cast<double>(m.detail.x)) {
     if (scratch.bvh) {
       scratch.bvh->candidates(origin, dir, tMax, scratch.candidates);
       for (const std::uint32_t i : scratch.candidates) addParticle(m, m.particles[i], origin, dir, tMax);
@@ -74,12 +76,14 @@ class RaySpans {
       if (r0 > r1) std::swap(r0, r1);
       const double t0 = std::max(r0, 0.0), t1 = std::min(r1, tMax);
       if (!(t1 > t0)) return;
-      spans.push_back({t0, t1, m.unitOpticalRadius * p.density * std::sqrt(a), o, d});
+      spans.push_back({t0, t1, m.unitOpticalRadius * p.density * std::sqrt(a) * detailBound, o, d});
     }
   }
 
   std::vector<Span> spans;
   std::vector<double> bounds;
+  glm::dvec3 rayOrigin, rayDir;  // the world ray: x(t) = rayOrigin + t·rayDir
+  double detailBound;      // 1 + a: the largest detail factor, folded into every majorant
 
   bool empty() const { return spans.empty(); }
 
@@ -96,12 +100,16 @@ class RaySpans {
   }
 };
 
-double extinctionAt(const SceneMedium& m, const std::vector<const Span*>& active, double t) {
+// σ(x(t)) = m(x) · Σ_i σ_i(x): the spans' majorants carry the bound 1 + a of the detail factor m,
+// so the factor enters as m / (1 + a) (exactly 1 without detail).
+double extinctionAt(const SceneMedium& m, const RaySpans& r, const std::vector<const Span*>& active, double t) {
   double sigma = 0;
   for (const Span* s : active) {
     const glm::dvec3 p = s->o + t * s->d;
     sigma += s->majorant * static_cast<double>(m.model->density(glm::vec3(p)));
   }
+  if (m.detail.x > 0.0f && sigma > 0.0)
+    sigma *= static_cast<double>(glsl::detailDensityFactor(glm::vec3(r.rayOrigin + t * r.rayDir), m.detail)) / r.detailBound;
   return sigma;
 }
 
@@ -117,7 +125,7 @@ double freeFlight(const SceneMedium& m, const RaySpans& r, McRng& rng, std::vect
     for (;;) {
       t += expSample(rng) / maj;
       if (t >= tb) break;
-      const double sigma = extinctionAt(m, active, t);
+      const double sigma = extinctionAt(m, r, active, t);
       if (rng.next() * maj < sigma) return t;
     }
   }
@@ -126,7 +134,7 @@ double freeFlight(const SceneMedium& m, const RaySpans& r, McRng& rng, std::vect
 
 // Transmittance along the whole ray: exact for homogeneous particles, ratio tracking otherwise.
 double transmittance(const SceneMedium& m, const RaySpans& r, McRng& rng, std::vector<const Span*>& active) {
-  if (m.model->model() == DensityModel::Sphere) {
+  if (m.model->model() == DensityModel::Sphere && !(m.detail.x > 0.0f)) {
     double tau = 0;
     for (const auto& s : r.spans) tau += s.majorant * (s.t1 - s.t0);
     return std::exp(-tau);
@@ -140,7 +148,7 @@ double transmittance(const SceneMedium& m, const RaySpans& r, McRng& rng, std::v
     for (;;) {
       t += expSample(rng) / maj;
       if (t >= tb) break;
-      T *= 1.0 - extinctionAt(m, active, t) / maj;
+      T *= 1.0 - extinctionAt(m, r, active, t) / maj;
     }
     if (T <= 0) return 0;
   }
@@ -251,7 +259,7 @@ double homogeneousOpticalDepth(const SceneMedium& medium, const glm::dvec3& orig
   Scratch sc;
   const RaySpans r(medium, origin + t0 * direction, direction, sc, t1 - t0);
   double tau = 0;
-  for (const auto& s : r.spans) tau += s.majorant * (s.t1 - s.t0);
+  for (const auto& s : r.spans) tau += s.majorant / r.detailBound * (s.t1 - s.t0);
   return tau;
 }
 

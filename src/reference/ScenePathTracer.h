@@ -17,6 +17,9 @@
 // problem), with phase functions evaluated at world-space scattering angles, as the renderer
 // does. No absorption (single-scattering albedo 1).
 //
+// Detail noise (optional, SceneMedium::detail): the summed density at the world point x is
+// multiplied by m(x) = 1 + a·n(x/s) ∈ [1 − a, 1 + a] (lut_formats/glsl/cloudlut_detail_noise.glsl).
+//
 // Light: a directional sun (unit irradiance, times the sun colour) along −l, and optionally a
 // uniform sky (constant radiance from every direction, times the sky colour).
 //
@@ -45,6 +48,7 @@
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "core/Defaults.h"
 #include "core/Phase.h"
@@ -64,6 +68,10 @@ struct SceneMedium {
   std::vector<SceneParticle> particles;
   const ReferenceParticle* model = nullptr;  // ρ̂; must outlive the medium's use
   double unitOpticalRadius = defaults::kUnitOpticalRadius;  // β·R
+  // Detail noise (core/DetailNoise.h, DetailNoise::packed()): the extinction at the world point x
+  // times m(x) = 1 + a·n(x/s) = glsl::detailDensityFactor(x, detail), the renderer's definition;
+  // the majorants times 1 + a. All 0: none (m = 1).
+  glm::vec4 detail{0.0f};
 };
 
 struct ScenePtSettings {
@@ -143,7 +151,7 @@ ScenePtImage renderScene(const SceneMedium& medium, const SceneLight& light, con
                          int width, int height, const CameraRayFn& cameraRay, const ProgressFn& progress = {});
 
 // Exact optical depth along the segment [t0, t1] of a ray (world units) when every particle is
-// homogeneous (model Sphere); used by the tests and the analytic shortcut.
+// homogeneous (model Sphere), without the detail noise; used by the tests and the analytic shortcut.
 double homogeneousOpticalDepth(const SceneMedium& medium, const glm::dvec3& origin, const glm::dvec3& direction,
                                double t0, double t1);
 

@@ -17,7 +17,8 @@ const std::vector<std::string> kFragmentFiles = {"cloudlut_geometry.glsl", "clou
                                                  "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
                                                  "particle_common.glsl", "volume_fragments.glsl",
                                                  "sun_volume.glsl", "sun_volume_chord.glsl",
-                                                 "sun_volume_sampling.glsl", "particle.frag.glsl"};
+                                                 "sun_volume_sampling.glsl", "cloudlut_detail_noise.glsl",
+                                                 "particle_detail.glsl", "particle.frag.glsl"};
 constexpr GLsizei kBoxVertices = 36;  // 6 faces × 2 triangles (particle.vert.glsl)
 constexpr int kSunVolumeUnit = 3;      // texture unit after the three tables (ShadingTables)
 
@@ -62,6 +63,7 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   uniforms.set("uUseOrder", useOrder ? 1 : 0);
   uniforms.set("uVolume", volume ? 1 : 0);
   uniforms.set("uLighting", s.lighting == LightingModel::Cloud ? 1 : 0);
+  uniforms.set("uDetailNoise", s.detail.packed());
   uniforms.set("uSunlightVolume", sunBuilt && s.occlusion && s.sunlight == SunlightModel::Volume ? 1 : 0);
   sun.bind(uniforms, kSunVolumeUnit);
   if (!sunBuilt) uniforms.set("uSunCascades", 0);

@@ -66,6 +66,9 @@ struct RenderSettings {
   // With view.lighting.atmosphere and a sun volume: light shafts, the clouds' shadow on the air's
   // single scattering of sunlight (shaders/sky_shafts.glsl; --no-light-shafts turns them off).
   bool lightShafts = true;
+  // The density's detail noise (seed §5.4, core/DetailNoise.h): the optical depth of each chord
+  // times the mean of the density factor along it; amplitude 0 = off.
+  DetailNoise detail;
 };
 
 // The sunlight each lighting model takes unless told otherwise.

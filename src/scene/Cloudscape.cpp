@@ -66,7 +66,7 @@ CloudscapeScene parseCloudscape(const nlohmann::json& doc, const std::string& so
   static const std::set<std::string> allowed{"description", "coverage", "density", "cloud_base_m", "cloud_top_m",
                                              "particle_size", "vertical_aspect", "noise_scale_m", "cell_size_m",
                                              "jitter", "visibility_m", "fade_fraction", "height_profile", "top_taper",
-                                             "edge_density", "seed", "camera", "sun", "sky"};
+                                             "edge_density", "seed", "camera", "sun", "sky", "detail_noise"};
   for (const auto& item : doc.items())
     if (!allowed.count(item.key())) {
       std::string list;
@@ -106,10 +106,12 @@ CloudscapeScene parseCloudscape(const nlohmann::json& doc, const std::string& so
   c.seed = static_cast<int>(number(doc, source, "seed", 0.0f, 1e6f, static_cast<float>(c.seed)));
   // Camera, sun and sky: the scene format's fields, validated by its parser.
   nlohmann::json view = nlohmann::json::object();
-  for (const char* key : {"camera", "sun", "sky"})
+  for (const char* key : {"camera", "sun", "sky", "detail_noise"})
     if (doc.contains(key)) view[key] = doc[key];
   view["particles"] = nlohmann::json::array();
-  scene.view = parseScene(view, source).view;
+  const Scene parsed = parseScene(view, source);
+  scene.view = parsed.view;
+  scene.detail = parsed.detail;
   return scene;
 }
 

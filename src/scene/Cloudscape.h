@@ -4,6 +4,7 @@
 // particles. The GPU generates them (Renderer::renderCloudscape); generateCloudscapeCpu is the
 // reference with the same functions (scene/glsl/cloudscape_grid.glsl compiled as C++).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,7 @@ struct CloudscapeScene {
   std::string name;  // preset name or file
   CloudType cloud;
   ViewSettings view;
+  std::optional<DetailNoise> detail;  // "detail_noise", as in a particle scene (world units: m)
 };
 
 // Parses a cloudscape document (`source` names it in errors: FileError "<source>: <field>: ...").

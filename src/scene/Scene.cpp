@@ -2,6 +2,7 @@
 
 #include "scene/AtmosphereJson.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -157,7 +158,37 @@ Particle parseParticle(const Validator& check, const nlohmann::json& j, const st
   return p;
 }
 
+// "detail_noise": {"amplitude": a in [0, 1], "scale": s > 0 (world units), "seed": integer in [0, 2^24)}.
+DetailNoise parseDetailNoise(const Validator& check, const nlohmann::json& j) {
+  check.requireObject(j, "detail_noise");
+  check.onlyKeys(j, "detail_noise", {"amplitude", "scale", "seed"});
+  DetailNoise d;
+  d.amplitude = kDefaultDetailAmplitude;
+  const char* amplitude = "expected a number in [0, 1] (0 = off)";
+  if (j.contains("amplitude")) d.amplitude = check.finiteNumber(j["amplitude"], "detail_noise.amplitude", amplitude);
+  if (!(d.amplitude >= 0.0f && d.amplitude <= kMaxDetailAmplitude)) check.fail("detail_noise.amplitude", amplitude);
+  if (!j.contains("scale")) check.fail("detail_noise.scale", "missing (expected the feature size in world units, > 0)");
+  d.scale = check.positive(j["scale"], "detail_noise.scale");
+  if (j.contains("seed")) {
+    const char* seed = "expected an integer in [0, 16777215]";
+    const float v = check.finiteNumber(j["seed"], "detail_noise.seed", seed);
+    if (!(v >= 0.0f && v < static_cast<float>(kMaxDetailSeed)) || v != std::floor(v)) check.fail("detail_noise.seed", seed);
+    d.seed = static_cast<int>(v);
+  }
+  return d;
+}
+
 }  // namespace
+
+DetailNoise defaultDetailNoise(const std::vector<Particle>& particles) {
+  double sum = 0;
+  for (const Particle& p : particles) sum += std::max({p.radii.x, p.radii.y, p.radii.z});
+  DetailNoise d;
+  d.amplitude = kDefaultDetailAmplitude;
+  d.scale = particles.empty() ? 1.0f
+                              : kDefaultDetailScaleFraction * static_cast<float>(sum / static_cast<double>(particles.size()));
+  return d;
+}
 
 glm::vec3 sunFromElevationAzimuth(float elevationDeg, float azimuthDeg) {
   const float e = glm::radians(elevationDeg), a = glm::radians(azimuthDeg);
@@ -167,7 +198,7 @@ glm::vec3 sunFromElevationAzimuth(float elevationDeg, float azimuthDeg) {
 Scene parseScene(const nlohmann::json& document, const std::string& source) {
   const Validator check(source);
   if (!document.is_object()) check.fail("(document)", "expected a JSON object with a \"particles\" array");
-  check.onlyKeys(document, "", {"description", "camera", "sun", "sky", "particles"});
+  check.onlyKeys(document, "", {"description", "camera", "sun", "sky", "detail_noise", "particles"});
   Scene scene;
   if (document.contains("description") && !document["description"].is_string())
     check.fail("description", "expected a string");
@@ -219,6 +250,7 @@ Scene parseScene(const nlohmann::json& document, const std::string& source) {
     if (s.contains("model")) scene.view.atmosphere = atmosphere;
     if (s.contains("color")) scene.view.skyColor = check.color(s["color"], "sky.color");
   }
+  if (document.contains("detail_noise")) scene.detail = parseDetailNoise(check, document["detail_noise"]);
   if (!document.contains("particles")) check.fail("particles", "missing (expected an array of particles)");
   const nlohmann::json& ps = document["particles"];
   if (!ps.is_array()) check.fail("particles", "expected an array of particles");

@@ -18,6 +18,7 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/DetailNoise.h"
 #include "core/Glsl.h"
 
 namespace cloudlut::scene {
@@ -57,7 +58,17 @@ struct ViewSettings {
 struct Scene {
   std::vector<Particle> particles;
   ViewSettings view;
+  // "detail_noise": the density's detail noise (core/DetailNoise.h); absent: none unless asked
+  // for on the command line (defaultDetailNoise).
+  std::optional<DetailNoise> detail;
 };
+
+// The detail noise `--detail-noise on` gives a scene without a "detail_noise" field: amplitude
+// kDefaultDetailAmplitude, feature size kDefaultDetailScaleFraction times the particles' mean
+// largest semi-axis (world units; 1 without particles).
+inline constexpr float kDefaultDetailAmplitude = 0.6f;
+inline constexpr float kDefaultDetailScaleFraction = 0.3f;
+DetailNoise defaultDetailNoise(const std::vector<Particle>& particles);
 
 // The unit direction toward a sun at `elevationDeg` above the horizon and `azimuthDeg` from −z
 // (the default view direction) toward +x, degrees (docs/SCENE_FORMAT.md).

@@ -12,7 +12,8 @@ bool identity(const glm::quat& q) { return q.w == 1.0f && q.x == 0.0f && q.y == 
 
 }  // namespace
 
-nlohmann::json sceneDocument(const std::vector<Particle>& particles, const View& view, const std::string& description) {
+nlohmann::json sceneDocument(const std::vector<Particle>& particles, const View& view, const std::string& description,
+                             const DetailNoise& detail) {
   nlohmann::json doc = nlohmann::json::object();
   doc["description"] = description;
   doc["camera"] = {{"eye", triple(view.camera.eye)},
@@ -21,6 +22,8 @@ nlohmann::json sceneDocument(const std::vector<Particle>& particles, const View&
                    {"fov_deg", view.camera.fovDeg}};
   doc["sun"] = {{"direction", triple(view.lighting.sunDirection)}, {"color", triple(view.lighting.sunColor)}};
   doc["sky"] = {{"color", triple(view.lighting.skyColor)}};
+  if (detail.enabled())
+    doc["detail_noise"] = {{"amplitude", detail.amplitude}, {"scale", detail.scale}, {"seed", detail.seed}};
   nlohmann::json list = nlohmann::json::array();
   for (const Particle& p : particles) {
     nlohmann::json j = {{"center", triple(p.center)}, {"radii", triple(p.radii)}, {"density", p.density}};

@@ -11,9 +11,11 @@
 
 namespace cloudlut::scene {
 
-// The document of `particles` seen with `view` (camera, sun and sky fields), numbers written with
-// the 9 significant digits that carry a float exactly.
-nlohmann::json sceneDocument(const std::vector<Particle>& particles, const View& view, const std::string& description);
+// The document of `particles` seen with `view` (camera, sun and sky fields) and, when enabled,
+// the detail noise `detail`; numbers written with the 9 significant digits that carry a float
+// exactly.
+nlohmann::json sceneDocument(const std::vector<Particle>& particles, const View& view, const std::string& description,
+                             const DetailNoise& detail = {});
 
 // The document as text (one particle per line).
 std::string sceneText(const nlohmann::json& document);

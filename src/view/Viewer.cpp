@@ -85,6 +85,7 @@ std::vector<std::string> overlayLines(const ViewerState& s, const render::Render
           format("quality %s, %s blending, 1/%d resolution", scene::qualityPresetNames()[s.quality].c_str(),
                  render::toString(s.blend), s.downscale),
           format("lighting %s, sunlight %s", render::toString(s.lighting), render::toString(s.sunlight)),
+          format("detail noise %s", on(s.detail && o.settings.detail.enabled())),
           format("occlusion %s; single %s, multiple %s, ambient %s", on(s.occlusion), on(s.terms & render::kTermSingle),
                  on(s.terms & render::kTermMultiple), on(s.terms & render::kTermAmbient)),
           format("camera (%.0f, %.0f, %.0f), yaw %.1f, pitch %.1f", e.x, e.y, e.z, s.camera.yawDeg, s.camera.pitchDeg),
@@ -141,6 +142,7 @@ int runViewer(const ViewerOptions& o) {
   state.lighting = o.settings.lighting;
   state.sunlight = o.settings.sunlight;
   state.downscale = o.settings.downscale;
+  state.detail = o.settings.detail.enabled();
   state.lutSetCount = o.lutSets.size();
 
   WindowContext window(o.settings.width, o.settings.height, "cloudlut view");
@@ -176,6 +178,7 @@ int runViewer(const ViewerOptions& o) {
     settings.lighting = state.lighting;
     settings.sunlight = state.sunlight;
     settings.downscale = state.downscale;
+    settings.detail = state.detail ? o.settings.detail : DetailNoise{};
     render::RenderStats stats;
     const render::Image image =
         o.particles ? renderer->render(o.scene.particles, settings, &stats)

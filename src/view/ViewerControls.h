@@ -31,6 +31,7 @@ struct ViewerState {
   render::LightingModel lighting = render::LightingModel::Cloud;  // M switches (docs/LIGHTING.md)
   render::SunlightModel sunlight = render::SunlightModel::Volume;  // P switches
   int downscale = 1;
+  bool detail = true;  // V: the scene's detail noise on or off (when it has one)
   std::size_t lutSet = 0, lutSetCount = 1;  // which of the LUT sets found (N cycles)
   bool overlay = true;
   // Requests the loop acts on.

@@ -89,6 +89,7 @@ void main() {
   vec2 od = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(S, v), uOpticalDepthDims).xy;
   float chord = chordLength(S, v);
   float tau = front * particleOpticalDepth(rho, uUnitOpticalRadius, chord, od.x);
+  tau *= particleDetailFactor(uEye, dir, tNear, tExit);  // detail noise: particle_detail.glsl
   float transmittance = exp(-tau);
 
   // Where the light is scattered on average along the chord: its first matter, then the
