@@ -54,19 +54,20 @@ std::vector<float> transposedFloat(const std::vector<double>& A, int rows, int c
 // the sun's forward peak, then one product with the second-scattering matrix.
 std::vector<float> firstScatteringSource(const SphereField& field, const DirectionGrid& fine,
                                          const std::vector<float>& M2t, double sigma) {
-  const int NS = field.nodeCount(), F = fine.count();
+  const int NS = field.nodeCount(), F = fine.count(), nt = field.zenithCount();
   const glm::dvec3 l(0, 0, 1);
-  std::vector<float> A(static_cast<std::size_t>(NS) * F);
+  std::vector<float> A(static_cast<std::size_t>(NS) * F);  // in the field's layout with F directions
   tbb::parallel_for(0, NS, [&](int s) {
     const glm::dvec3 x = field.node(s);
+    const std::size_t first = static_cast<std::size_t>(s / nt) * F * nt + static_cast<std::size_t>(s % nt);
     for (int f = 0; f < F; ++f) {
       const glm::dvec3 back = -fine.direction(f);
-      A[static_cast<std::size_t>(s) * F + f] =
+      A[first + static_cast<std::size_t>(f) * nt] =
           static_cast<float>(sunlitRayIntegralFast(x, back, l, sigma, distanceToSphere(x, back)));
     }
   });
   std::vector<float> J(field.size(), 0.0f);
-  convolvePhase(A, F, M2t, field.directionCount(), NS, J);
+  convolvePhase(A, F, M2t, field.directionCount(), field, J);
   return J;
 }
 
@@ -79,8 +80,8 @@ void gatherTable(const SphereField& field, const std::vector<float>& J, double s
   const auto& ax = dst.axes();
   const int nS = ax[0].size, nP = ax[1].size, nV = ax[2].size;
   const DirectionGrid& dirs = field.directions();
-  const std::size_t strideR = field.radialStride(), strideT = field.zenithStride();
-  const std::size_t nb = static_cast<std::size_t>(dirs.phiCount());
+  const std::size_t strideR = field.radialStride(), strideB = field.directionStride();
+  const std::size_t zenithOffset = static_cast<std::size_t>(dirs.phiCount()) * strideB;
   tbb::parallel_for(0, nS * nP, [&](int row) {
     const int iS = row % nS, iP = row / nS;
     const double thS = ax[0].value(iS), phV = ax[1].value(iP);
@@ -108,10 +109,10 @@ void gatherTable(const SphereField& field, const std::vector<float>& J, double s
       double value = 0.0;
       for (std::size_t k = 0; k < ss.size(); ++k) {
         const FieldPoint p = field.locate(S + ss[k] * v, w, wh);
-        float corner[2] = {0.0f, 0.0f};  // the two direction-zenith nodes about −v
+        float corner[2];  // the two direction-zenith nodes about −v
         for (int c = 0; c < 2; ++c)
-          accumulateField(&J[p.offset + static_cast<std::size_t>(ia + c) * nb], strideR, strideT, p.wr, p.wt, p.fb,
-                          corner[c]);
+          corner[c] = sumFloat4(interpolateFieldTerms(&J[p.offset + static_cast<std::size_t>(ia + c) * zenithOffset],
+                                                      strideR, strideB, p.wr, p.wt, p.fb));
         value += ww[k] * (corner[0] + fa * (corner[1] - corner[0]));
       }
       dst.at(dst.index(iS, iP, iV, slice), 0) = static_cast<float>(std::max(0.0, value / opacity));

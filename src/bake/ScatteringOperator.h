@@ -14,10 +14,11 @@
 
 namespace cloudlut::bake {
 
-// out[s][i] = Σ_j in[s][j] · Mt[j][i] for every spatial node s of `nodes`: in has inCols values
-// per node, Mt is inCols × cols (a phase matrix transposed), out has cols values per node.
-void convolvePhase(const std::vector<float>& in, int inCols, const std::vector<float>& Mt, int cols, int nodes,
-                   std::vector<float>& out);
+// out(s, i) = Σ_j Mt[j·outDirs + i] · in(s, j) at every spatial node s of `field`, both in the
+// field's layout (SphereField.h): in with inDirs directions per node, out with outDirs; Mt is
+// inDirs × outDirs row-major (a phase matrix transposed).
+void convolvePhase(const std::vector<float>& in, int inDirs, const std::vector<float>& Mt, int outDirs,
+                   const SphereField& field, std::vector<float>& out);
 
 class TransportStencil {
  public:

@@ -82,8 +82,8 @@ FieldPoint SphereField::locate(const glm::dvec3& y, const glm::dvec3& w, double 
   double fb;
   directions_->locatePhi(phi, ib, fb);
   p.fb = static_cast<float>(fb);
-  p.offset = static_cast<std::size_t>(ir) * radialStride() + static_cast<std::size_t>(it) * zenithStride() +
-             static_cast<std::size_t>(ib);
+  p.offset = static_cast<std::size_t>(ir) * radialStride() + static_cast<std::size_t>(ib) * directionStride() +
+             static_cast<std::size_t>(it);
   return p;
 }
 
