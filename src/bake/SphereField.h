@@ -27,7 +27,7 @@ namespace cloudlut::bake {
 // three-point Lagrange in the first and last intervals. Linear interpolation of a curved field
 // in an optically thick medium acts like extra diffusion (it widens every step of the random
 // walk to the grid spacing); quadratic exactness removes that leading error.
-void cubicWeights(double x, int n, int& start, float w[4]);
+void cubicWeights(float x, int n, int& start, float w[4]);
 
 // Depth-graded radial axis: node i of n at q = i/(n−1), with
 //   q(δ) = α δ + (1 − α) ln(1 + A δ) / ln(1 + A),   δ = 1 − r (depth below the surface):
@@ -39,8 +39,8 @@ class RadialAxis {
   double radius(int i) const { return radii_[static_cast<std::size_t>(i)]; }
   // q(δ) at the radius r (clamped to [0, 1]).
   double q(double r) const;
-  // Four-node weights (cubicWeights) in q at the radius r.
-  void cubic(double r, int& start, float w[4]) const;
+  // Four-node weights (cubicWeights) in q at the radius r (single precision).
+  void cubic(float r, int& start, float w[4]) const;
 
  private:
   double qOfDepth(double d) const;
