@@ -126,7 +126,7 @@ double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm
     float part = 0.0f;
     for (int i = 0; i < 8; ++i) {
       const float u = a + w * g8.x[i];
-      const float t = std::min(-std::log1p(-u) * invS, tMax);
+      const float t = std::min(-std::log(1.0f - u) * invS, tMax);  // logf: far cheaper than log1pf
       const float perp = std::max(0.0f, 1.0f - (p0 + t * (p1 + t * p2)));
       const float sun = std::max(0.0f, std::sqrt(perp) - (fz + t * gz));
       part += g8.w[i] * std::exp(-s * sun);

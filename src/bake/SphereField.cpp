@@ -59,7 +59,7 @@ double RadialAxis::q(double r) const { return qOfDepth(std::clamp(1.0 - r, 0.0, 
 void RadialAxis::cubic(float r, int& start, float w[4]) const {
   const float d = std::clamp(1.0f - r, 0.0f, 1.0f);
   const float q = A_ > 1e-9 ? static_cast<float>(alpha_) * d +
-                                  static_cast<float>((1.0 - alpha_) / logA_) * std::log1p(static_cast<float>(A_) * d)
+                                  static_cast<float>((1.0 - alpha_) / logA_) * std::log(1.0f + static_cast<float>(A_) * d)
                             : d;
   cubicWeights(q * static_cast<float>(n_ - 1), n_, start, w);
 }
