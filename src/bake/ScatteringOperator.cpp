@@ -43,7 +43,7 @@ TransportStencil::TransportStencil(const SphereField& field, double sigma, int p
   K_ = static_cast<int>(probeS.size());
   const DirectionGrid& dirs = field.directions();
   const int D = dirs.count(), nb = dirs.phiCount();
-  entries_.resize(field.size() * static_cast<std::size_t>(K_));
+  entries_.reset(new Entry[field.size() * static_cast<std::size_t>(K_)]);
   counts_.assign(field.size(), 0);
   std::vector<glm::dvec3> directions(static_cast<std::size_t>(D));
   for (int d = 0; d < D; ++d) directions[static_cast<std::size_t>(d)] = dirs.direction(d);

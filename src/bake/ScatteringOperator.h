@@ -8,6 +8,7 @@
 //     far panel of a short ray) are left out of it.
 //   M (phase convolution): J'(x, ω) = Σ_ω' M(ω, ω') L(x, ω'), one dense matrix product.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "bake/SphereField.h"
@@ -43,7 +44,9 @@ class TransportStencil {
   };
   const SphereField* field_;
   int K_ = 0;
-  std::vector<Entry> entries_;  // K per (node, direction), cell-major
+  // K per (node, direction) in the field's order; left uninitialised (no 10⁸-byte clearing per
+  // density): only the first counts_[cell] of a cell are written and read.
+  std::unique_ptr<Entry[]> entries_;
   std::vector<std::uint8_t> counts_;  // points of nonzero weight per cell (packed first)
 };
 
