@@ -119,9 +119,13 @@ double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm
   const float fz = static_cast<float>(xz), gz = static_cast<float>(dz), s = static_cast<float>(sigma);
   const float invS = 1.0f / s, tMax = static_cast<float>(length);
   const float U = static_cast<float>(-std::expm1(-sigma * length));
-  const float edges[4] = {0.0f, U / 16.0f, U / 4.0f, U};
+  // Panels in u: [0, U/4] and [U/4, U]; one panel [0, U] when the ray's optical depth is at
+  // most 1 (measured on the default bake: the table moves by < 1e-5 relative against the earlier
+  // three panels [0, U/16, U/4, U], whose first split changed nothing above float rounding).
+  const int panels = s * tMax <= 1.0f ? 1 : 2;
+  const float edges[3] = {0.0f, panels == 1 ? U : U / 4.0f, U};
   float sum = 0.0f;
-  for (int p = 0; p < 3; ++p) {
+  for (int p = 0; p < panels; ++p) {
     const float a = edges[p], w = edges[p + 1] - edges[p];
     float part = 0.0f;
     for (int i = 0; i < 8; ++i) {

@@ -26,7 +26,8 @@ inline double sunPath(const glm::dvec3& x, const glm::dvec3& l) { return distanc
 double sunlitRayIntegral(const glm::dvec3& x, const glm::dvec3& d, const glm::dvec3& l,
                          double sigma, double length);
 
-// The same integral by a cheap fixed rule in u = 1 − e^{−σt} (three graded panels, 24 points);
+// The same integral by a cheap fixed rule in u = 1 − e^{−σt}, U = 1 − e^{−σ·length}: 8-point
+// Gauss–Legendre panels [0, U/4] and [U/4, U], or the single panel [0, U] when σ·length ≤ 1;
 // accurate to ~1e-3 relative, used where many rays are needed.
 double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm::dvec3& l,
                              double sigma, double length);
