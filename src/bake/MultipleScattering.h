@@ -24,6 +24,10 @@
 // closed-form-sun-path integral along each ray, on a direction grid refined toward the sun's
 // forward peak, convolved with the later phase function.
 // The table value is then LM(S, v) = ∫_0^chord σ e^{-σt} ΣJ_n(S + t v, −v) dt.
+// Thin particles (σ ≤ FastResolution::thinSigma) run orders 3 … ∞ on a coarser spatial grid
+// (same directions: the phase matrix's resolution sets the diffusion rate through 1 − g, so
+// directions are not coarsened), J_2 interpolated onto it and their sum back before the gather;
+// dense particles keep one grid (their dark side needs the position-zenith resolution).
 //
 // Converged (2 … ∞): orders 2 … 18 as above, then the tail X = Σ_{n>18} J_n from
 // (I − K) X = K·J_18 by restarted GMRES (inner products over fixed blocks: thread-count
@@ -55,6 +59,12 @@ struct FastResolution {
   int gatherPoints = 24;     // ... in the final gather to the table nodes
   double grading = 32.0;     // depth grading a: q = α δ + (1 − α) ln(1 + aσδ) / ln(1 + aσ), δ = 1 − r
   double linearShare = 0.25; // α
+  // Thin particles (σ ≤ thinSigma): orders 3 … ∞ on a coarser volume grid, thinRadial ×
+  // thinZenith spatial nodes with the same directions and grading; J_2 is interpolated onto it
+  // and the orders' sum back onto the grid above before the gather.
+  double thinSigma = 5.0;
+  int thinRadial = 12;
+  int thinZenith = 20;
 };
 
 // Fills the multiple-scattering values of density slice `slice` (σ = optical radius) of
