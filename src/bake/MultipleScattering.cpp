@@ -188,7 +188,8 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
 
   // K = M·T, its transport stencil built once for every order of this density.
   const auto t1 = std::chrono::steady_clock::now();
-  const TransportStencil transport(later, sigma, res.transportPoints);
+  const TransportStencil transport(later, sigma,
+                                   sigma >= kFarPanelMaxSigma ? res.denseTransportPoints : res.transportPoints);
   ScatteringOperator K(transport, sh.Mt, later);
   const double tStencil = seconds(t1);
   say(0.2);

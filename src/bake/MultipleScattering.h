@@ -56,6 +56,8 @@ struct FastResolution {
   int fineTheta = 32;     // once-scattered light: direction-zenith nodes, graded toward −l
   int finePhi = 17;
   int transportPoints = 12;  // Gauss points per ray in the transport operator
+  int denseTransportPoints = 10;  // ... when σ ≥ kFarPanelMaxSigma (u panels 2 + 2 + 6 points:
+                                  // the table moves < 3e-4 relative against 3 + 3 + 6)
   int gatherPoints = 24;     // ... in the final gather to the table nodes
   double grading = 32.0;     // depth grading a: q = α δ + (1 − α) ln(1 + aσδ) / ln(1 + aσ), δ = 1 − r
   double linearShare = 0.25; // α

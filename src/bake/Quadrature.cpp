@@ -143,8 +143,6 @@ double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm
 namespace {
 // Optical depth of the near part of a ray (attenuatedRayRule).
 constexpr double kNearOpticalDepth = 6.0;
-// Optical radius from which the far panel is dropped.
-constexpr double kFarPanelMaxSigma = 20.0;
 
 // Gauss–Legendre panels [edges[p], edges[p+1]] in u = 1 − e^{−σs}, pts[p] points each, appended
 // as s = −ln(1 − u)/σ (at most `length`) with weights du: ∫ σe^{−σs} f ds = ∫ f du.

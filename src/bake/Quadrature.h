@@ -43,5 +43,7 @@ double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm
 // Fills s (distances from the ray's start, ascending within each panel) and w; `total` points
 // at least (every panel gets two or more).
 void attenuatedRayRule(double sigma, double length, int total, std::vector<double>& s, std::vector<double>& w);
+// Optical radius from which attenuatedRayRule drops the far panel (all points in u).
+inline constexpr double kFarPanelMaxSigma = 20.0;
 
 }  // namespace cloudlut::bake
