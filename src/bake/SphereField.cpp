@@ -9,32 +9,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-void cubicWeights(float x, int n, int& start, float w[4]) {
-  const int i = std::clamp(static_cast<int>(x), 0, n - 2);
-  const float f = std::clamp(x - static_cast<float>(i), 0.0f, 1.0f);
-  if (i == 0) {
-    start = 0;
-    w[0] = (f - 1) * (f - 2) / 2;
-    w[1] = -f * (f - 2);
-    w[2] = f * (f - 1) / 2;
-    w[3] = 0.0f;
-  } else if (i == n - 2) {
-    start = n - 4;
-    const float y = f + 1.0f;  // relative to node n − 3
-    w[0] = 0.0f;
-    w[1] = (y - 1) * (y - 2) / 2;
-    w[2] = -y * (y - 2);
-    w[3] = y * (y - 1) / 2;
-  } else {
-    start = i - 1;
-    const float f2 = f * f, f3 = f2 * f;
-    w[0] = (-f3 + 2 * f2 - f) / 2;
-    w[1] = (3 * f3 - 5 * f2 + 2) / 2;
-    w[2] = (-3 * f3 + 4 * f2 + f) / 2;
-    w[3] = (f3 - f2) / 2;
-  }
-}
-
 RadialAxis::RadialAxis(int nodes, double A, double linearShare)
     : n_(nodes), A_(A), alpha_(A > 1e-9 ? linearShare : 1.0), logA_(A > 1e-9 ? std::log1p(A) : 1.0) {
   // Node i: the depth δ with q(δ) = i/(n−1), by bisection.

@@ -12,6 +12,7 @@
 // into the meridian plane and interpolated with quadratic-exact four-node weights in depth
 // and in position zenith and linearly in the relative azimuth; the direction's zenith node is
 // chosen by the caller (it is constant along a ray).
+#include <algorithm>
 #include <cstddef>
 #include <cstring>
 #include <vector>
@@ -27,7 +28,32 @@ namespace cloudlut::bake {
 // three-point Lagrange in the first and last intervals. Linear interpolation of a curved field
 // in an optically thick medium acts like extra diffusion (it widens every step of the random
 // walk to the grid spacing); quadratic exactness removes that leading error.
-void cubicWeights(float x, int n, int& start, float w[4]);
+// Inline: it runs for every point of every transport stencil.
+inline void cubicWeights(float x, int n, int& start, float w[4]) {
+  const int i = std::clamp(static_cast<int>(x), 0, n - 2);
+  const float f = std::clamp(x - static_cast<float>(i), 0.0f, 1.0f);
+  if (i == 0) {
+    start = 0;
+    w[0] = (f - 1) * (f - 2) / 2;
+    w[1] = -f * (f - 2);
+    w[2] = f * (f - 1) / 2;
+    w[3] = 0.0f;
+  } else if (i == n - 2) {
+    start = n - 4;
+    const float y = f + 1.0f;  // relative to node n − 3
+    w[0] = 0.0f;
+    w[1] = (y - 1) * (y - 2) / 2;
+    w[2] = -y * (y - 2);
+    w[3] = y * (y - 1) / 2;
+  } else {
+    start = i - 1;
+    const float f2 = f * f, f3 = f2 * f;
+    w[0] = (-f3 + 2 * f2 - f) / 2;
+    w[1] = (3 * f3 - 5 * f2 + 2) / 2;
+    w[2] = (-3 * f3 + 4 * f2 + f) / 2;
+    w[3] = (f3 - f2) / 2;
+  }
+}
 
 // Depth-graded radial axis: node i of n at q = i/(n−1), with
 //   q(δ) = α δ + (1 − α) ln(1 + A δ) / ln(1 + A),   δ = 1 − r (depth below the surface):
