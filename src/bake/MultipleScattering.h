@@ -57,7 +57,7 @@ struct FastResolution {
   int finePhi = 17;
   int transportPoints = 12;  // Gauss points per ray in the transport operator
   int denseTransportPoints = 10;  // ... when σ ≥ kFarPanelMaxSigma (u panels 2 + 2 + 6 points:
-                                  // the table moves < 3e-4 relative against 3 + 3 + 6)
+                                  // the table moves ≤ 3.1e-4 relative against 3 + 3 + 6)
   int gatherPoints = 24;     // ... in the final gather to the table nodes
   double grading = 32.0;     // depth grading a: q = α δ + (1 − α) ln(1 + aσδ) / ln(1 + aσ), δ = 1 − r
   double linearShare = 0.25; // α

@@ -122,7 +122,7 @@ double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm
   const float invS = 1.0f / s, tMax = static_cast<float>(length);
   const float U = static_cast<float>(-std::expm1(-sigma * length));
   // Panels in u: [0, U/4] and [U/4, U]; one panel [0, U] when the ray's optical depth is at
-  // most 1 (measured on the default bake: the table moves by < 1e-5 relative against the earlier
+  // most 1 (measured on the default bake: the table moves by ≤ 2e-5 relative against the earlier
   // three panels [0, U/16, U/4, U], whose first split changed nothing above float rounding).
   const int panels = s * tMax <= 1.0f ? 1 : 2;
   const float edges[3] = {0.0f, panels == 1 ? U : U / 4.0f, U};
