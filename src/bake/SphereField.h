@@ -14,12 +14,12 @@
 // chosen by the caller (it is constant along a ray).
 #include <algorithm>
 #include <cstddef>
-#include <cstring>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "bake/DirectionGrid.h"
+#include "bake/Float4.h"
 
 namespace cloudlut::bake {
 
@@ -84,15 +84,6 @@ struct FieldPoint {
   float wt[4] = {0, 0, 0, 0};
   float fb = 0.0f;
 };
-
-// Four floats as one SIMD value (GCC/Clang vector extension: SSE on x86-64, NEON on ARM).
-typedef float Float4 __attribute__((vector_size(16)));
-inline Float4 loadFloat4(const float* p) {
-  Float4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-inline float sumFloat4(Float4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
 // The terms wt[t] · Σ_c wr[c] · (p[c, t] + fb · (p[c, t, b+1] − p[c, t])), t = 0 … 3, for p
 // pointing at the first node of the stencil (its direction already chosen): radial node c at
