@@ -70,12 +70,6 @@ void DirectionGrid::locateTheta(double theta, int& a, double& f) const {
   f = std::clamp((theta - t0) / (t1 - t0), 0.0, 1.0);
 }
 
-void DirectionGrid::locatePhi(double phi, int& b, double& f) const {
-  const double s = std::clamp(phi / kPi, 0.0, 1.0) * (nb_ - 1);
-  b = std::min(static_cast<int>(s), nb_ - 2);
-  f = s - b;
-}
-
 void DirectionGrid::bilinear(const glm::dvec3& w, int nodes[4], double weights[4]) const {
   const double theta = std::acos(std::clamp(w.z, -1.0, 1.0));
   const double phi = std::abs(std::atan2(w.y, w.x));

@@ -6,6 +6,7 @@
 // y → −y, so a grid needs only the azimuths φ ∈ [0, π]: nodes (θ_a, φ_b), θ graded as
 // θ(ξ) = π(1 − (1 − ξ)^p) on uniform ξ (p = 1 uniform; p > 1 refines toward θ = π, the
 // direction sunlight travels), φ uniform. Between nodes a field is bilinear in (θ, φ).
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -29,7 +30,11 @@ class DirectionGrid {
   // Lower node and fraction along θ for a zenith angle in [0, π].
   void locateTheta(double theta, int& a, double& f) const;
   // Lower node and fraction along φ for a folded azimuth in [0, π].
-  void locatePhi(double phi, int& b, double& f) const;
+  void locatePhi(double phi, int& b, double& f) const {  // inline: once per stencil point
+    const double s = std::clamp(phi / 3.14159265358979323846, 0.0, 1.0) * (nb_ - 1);
+    b = std::min(static_cast<int>(s), nb_ - 2);
+    f = s - b;
+  }
   // Bilinear weights of direction w: four (node, weight) pairs.
   void bilinear(const glm::dvec3& w, int nodes[4], double weights[4]) const;
 

@@ -1,5 +1,6 @@
 #include "bake/EnergyBalance.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -74,56 +75,71 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
       wA.push_back(g.w[k] / 12.0 * 2.0 * kPi * xi * std::sin(a));
     }
   const int nBeta = 64;
+  // The geometry of a sample (the table coordinates of (S, v), cos θv) does not depend on the
+  // slice: each (θS, α, β) is located once and read in every slice. Per slice, the sums run in
+  // the same order as a slice-by-slice loop would.
+  std::vector<double> rhos(nSlices), sigmas(nSlices);
+  std::vector<float> wFracs(nSlices);
+  for (int k = 0; k < nSlices; ++k) {
+    rhos[k] = std::exp2(dAx.value(k));
+    sigmas[k] = in.unitOpticalRadius * rhos[k];
+    wFracs[k] = nSlices > 1 ? static_cast<float>(k) / static_cast<float>(nSlices - 1) : 0.0f;
+  }
+  const std::size_t nK = static_cast<std::size_t>(nSlices);
+  std::vector<double> p1(thS.size() * nK, 0.0), pm(thS.size() * nK, 0.0);  // [i·nK + k]
+  tbb::parallel_for(std::size_t(0), thS.size(), [&](std::size_t i) {
+    const glm::vec3 S(static_cast<float>(std::sin(thS[i])), 0.0f, static_cast<float>(std::cos(thS[i])));
+    const glm::vec3 l(0.0f, 0.0f, 1.0f);
+    std::vector<double> a1(nK, 0.0), am(nK, 0.0), b1(nK), bm(nK);
+    for (std::size_t j = 0; j < alpha.size(); ++j) {
+      const double ca = std::cos(alpha[j]), sa = std::sin(alpha[j]);
+      const double ph = static_cast<double>(phaseValue(in.firstPhase, static_cast<float>(ca)));
+      std::fill(b1.begin(), b1.end(), 0.0);
+      std::fill(bm.begin(), bm.end(), 0.0);
+      for (int b = 0; b < nBeta; ++b) {
+        const double beta = kPi * (b + 0.5) / nBeta;
+        const glm::vec3 v(static_cast<float>(sa * std::cos(beta)), static_cast<float>(sa * std::sin(beta)),
+                          static_cast<float>(ca));
+        const float cosV = -glm::dot(v, S);
+        if (!(cosV > 0.0f)) continue;
+        const glm::vec4 x1 = single ? glsl::scatteringAxes(S, v, l, 1.0f, axes1, 2.0f) : glm::vec4(0.0f);
+        const glm::vec4 xm = multiple ? glsl::scatteringAxes(S, v, l, 1.0f, axesM, 2.0f) : glm::vec4(0.0f);
+        for (std::size_t k = 0; k < nK; ++k) {
+          const float tau = static_cast<float>(sigmas[k]) * 2.0f * cosV;
+          float val = 0.0f;
+          if (single) {
+            single->sample({x1.x, x1.y, x1.z, wFracs[k]}, &val);
+            b1[k] += static_cast<double>(scatteringFromStored(storage1, val, tau)) * cosV;
+          }
+          if (multiple) {
+            multiple->sample({xm.x, xm.y, xm.z, wFracs[k]}, &val);
+            bm[k] += static_cast<double>(scatteringFromStored(storageM, val, tau)) * cosV;
+          }
+        }
+      }
+      const double wb = kPi / nBeta * 2.0;
+      for (std::size_t k = 0; k < nK; ++k) {
+        a1[k] += wA[j] * ph * b1[k] * wb;
+        am[k] += wA[j] * bm[k] * wb;
+      }
+    }
+    for (std::size_t k = 0; k < nK; ++k) {
+      p1[i * nK + k] = wS[i] * a1[k];
+      pm[i * nK + k] = wS[i] * am[k];
+    }
+  });
   EnergyBalance out;
   out.slices.resize(nSlices);
   for (int k = 0; k < nSlices; ++k) {
-    const double s = dAx.value(k);
-    const double rho = std::exp2(s), sigma = in.unitOpticalRadius * rho;
-    const float wFrac = nSlices > 1 ? static_cast<float>(k) / static_cast<float>(nSlices - 1) : 0.0f;
-    std::vector<double> p1(thS.size(), 0.0), pm(thS.size(), 0.0);
-    tbb::parallel_for(std::size_t(0), thS.size(), [&](std::size_t i) {
-      const glm::vec3 S(static_cast<float>(std::sin(thS[i])), 0.0f, static_cast<float>(std::cos(thS[i])));
-      const glm::vec3 l(0.0f, 0.0f, 1.0f);
-      double a1 = 0.0, am = 0.0;
-      for (std::size_t j = 0; j < alpha.size(); ++j) {
-        const double ca = std::cos(alpha[j]), sa = std::sin(alpha[j]);
-        const double ph = static_cast<double>(phaseValue(in.firstPhase, static_cast<float>(ca)));
-        double b1 = 0.0, bm = 0.0;
-        for (int b = 0; b < nBeta; ++b) {
-          const double beta = kPi * (b + 0.5) / nBeta;
-          const glm::vec3 v(static_cast<float>(sa * std::cos(beta)), static_cast<float>(sa * std::sin(beta)),
-                            static_cast<float>(ca));
-          const float cosV = -glm::dot(v, S);
-          if (!(cosV > 0.0f)) continue;
-          const float tau = static_cast<float>(sigma) * 2.0f * cosV;
-          float val = 0.0f;
-          if (single) {
-            const glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, axes1, 2.0f);
-            single->sample({x.x, x.y, x.z, wFrac}, &val);
-            b1 += static_cast<double>(scatteringFromStored(storage1, val, tau)) * cosV;
-          }
-          if (multiple) {
-            const glm::vec4 x = glsl::scatteringAxes(S, v, l, 1.0f, axesM, 2.0f);
-            multiple->sample({x.x, x.y, x.z, wFrac}, &val);
-            bm += static_cast<double>(scatteringFromStored(storageM, val, tau)) * cosV;
-          }
-        }
-        const double wb = kPi / nBeta * 2.0;
-        a1 += wA[j] * ph * b1 * wb;
-        am += wA[j] * bm * wb;
-      }
-      p1[i] = wS[i] * a1;
-      pm[i] = wS[i] * am;
-    });
     EnergySlice e;
-    e.rho = rho;
-    e.sigma = sigma;
-    e.unscattered = unscatteredShareExact(sigma);
+    e.rho = rhos[k];
+    e.sigma = sigmas[k];
+    e.unscattered = unscatteredShareExact(e.sigma);
     e.total = e.unscattered;
     double s1 = 0.0, sm = 0.0;
     for (std::size_t i = 0; i < thS.size(); ++i) {
-      s1 += p1[i];
-      sm += pm[i];
+      s1 += p1[i * nK + static_cast<std::size_t>(k)];
+      sm += pm[i * nK + static_cast<std::size_t>(k)];
     }
     if (single) {
       e.single = s1 / kPi;

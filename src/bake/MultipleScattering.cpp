@@ -21,7 +21,7 @@ namespace cloudlut::bake {
 struct FastMultipleScattering::Shared {
   ScatteringSettings settings;
   FastResolution res;
-  DirectionGrid coarse, fine;
+  DirectionGrid coarse, fine;  // J_2's directions (D) and the once-scattered light's (F)
   std::vector<float> Mt;   // D × D: Mt[j·D + i] = M[i][j], the later phase matrix
   std::vector<float> M2t;  // F × D: M2t[f·D + i] = M2[i][f], the second scattering of sunlight
 };
@@ -54,20 +54,52 @@ std::vector<float> transposedFloat(const std::vector<double>& A, int rows, int c
 // the sun's forward peak, then one product with the second-scattering matrix.
 std::vector<float> firstScatteringSource(const SphereField& field, const DirectionGrid& fine,
                                          const std::vector<float>& M2t, double sigma) {
-  const int NS = field.nodeCount(), F = fine.count();
+  const int NS = field.nodeCount(), F = fine.count(), nt = field.zenithCount();
   const glm::dvec3 l(0, 0, 1);
-  std::vector<float> A(static_cast<std::size_t>(NS) * F);
+  std::vector<float> A(static_cast<std::size_t>(NS) * F);  // in the field's layout with F directions
+  std::vector<glm::dvec3> backward(static_cast<std::size_t>(F));
+  for (int f = 0; f < F; ++f) backward[static_cast<std::size_t>(f)] = -fine.direction(f);
   tbb::parallel_for(0, NS, [&](int s) {
     const glm::dvec3 x = field.node(s);
+    const std::size_t first = static_cast<std::size_t>(s / nt) * F * nt + static_cast<std::size_t>(s % nt);
     for (int f = 0; f < F; ++f) {
-      const glm::dvec3 back = -fine.direction(f);
-      A[static_cast<std::size_t>(s) * F + f] =
+      const glm::dvec3& back = backward[static_cast<std::size_t>(f)];
+      A[first + static_cast<std::size_t>(f) * nt] =
           static_cast<float>(sunlitRayIntegralFast(x, back, l, sigma, distanceToSphere(x, back)));
     }
   });
   std::vector<float> J(field.size(), 0.0f);
-  convolvePhase(A, F, M2t, field.directionCount(), NS, J);
+  convolvePhase(A, F, M2t, field.directionCount(), field, J);
   return J;
+}
+
+// J(y, w) read through the stencil p = field.locate(y, w, ·) at the direction-zenith node ia of
+// w and the fraction fa toward ia + 1: linear between the two zenith nodes.
+float sampleField(const SphereField& field, const std::vector<float>& J, const FieldPoint& p, int ia, float fa) {
+  const std::size_t strideR = field.radialStride(), strideB = field.directionStride();
+  const std::size_t zenithOffset = static_cast<std::size_t>(field.directions().phiCount()) * strideB;
+  float corner[2];  // the two direction-zenith nodes about w
+  for (int c = 0; c < 2; ++c)
+    corner[c] = sumFloat4(interpolateFieldTerms(&J[p.offset + static_cast<std::size_t>(ia + c) * zenithOffset],
+                                                strideR, strideB, p.wr, p.wt, p.fb));
+  return corner[0] + fa * (corner[1] - corner[0]);
+}
+
+// The field J given on `from`, interpolated at every node and direction of `to` (sampleField):
+// J_to(x_s, ω_d) = J_from(x_s, ω_d).
+std::vector<float> interpolateField(const SphereField& from, const std::vector<float>& J, const SphereField& to) {
+  const DirectionGrid& dirs = to.directions();
+  std::vector<float> out(to.size());
+  tbb::parallel_for(0, dirs.count(), [&](int d) {
+    const glm::dvec3 w = dirs.direction(d);
+    int ia;
+    double fa;
+    from.directions().locateTheta(std::acos(std::clamp(w.z, -1.0, 1.0)), ia, fa);
+    const double wh = std::hypot(w.x, w.y);
+    for (int s = 0; s < to.nodeCount(); ++s)
+      out[to.index(s, d)] = sampleField(from, J, from.locate(to.node(s), w, wh), ia, static_cast<float>(fa));
+  });
+  return out;
 }
 
 // The table's mean source at its nodes of slice `slice`: with LM(S, v) = ∫_0^chord σ e^{−σt}
@@ -79,8 +111,6 @@ void gatherTable(const SphereField& field, const std::vector<float>& J, double s
   const auto& ax = dst.axes();
   const int nS = ax[0].size, nP = ax[1].size, nV = ax[2].size;
   const DirectionGrid& dirs = field.directions();
-  const std::size_t strideR = field.radialStride(), strideT = field.zenithStride();
-  const std::size_t nb = static_cast<std::size_t>(dirs.phiCount());
   tbb::parallel_for(0, nS * nP, [&](int row) {
     const int iS = row % nS, iP = row / nS;
     const double thS = ax[0].value(iS), phV = ax[1].value(iP);
@@ -106,14 +136,8 @@ void gatherTable(const SphereField& field, const std::vector<float>& J, double s
       const float fa = static_cast<float>(fad);
       const double wh = std::hypot(w.x, w.y);
       double value = 0.0;
-      for (std::size_t k = 0; k < ss.size(); ++k) {
-        const FieldPoint p = field.locate(S + ss[k] * v, w, wh);
-        float corner[2] = {0.0f, 0.0f};  // the two direction-zenith nodes about −v
-        for (int c = 0; c < 2; ++c)
-          accumulateField(&J[p.offset + static_cast<std::size_t>(ia + c) * nb], strideR, strideT, p.wr, p.wt, p.fb,
-                          corner[c]);
-        value += ww[k] * (corner[0] + fa * (corner[1] - corner[0]));
-      }
+      for (std::size_t k = 0; k < ss.size(); ++k)
+        value += ww[k] * sampleField(field, J, field.locate(S + ss[k] * v, w, wh), ia, fa);
       dst.at(dst.index(iS, iP, iV, slice), 0) = static_cast<float>(std::max(0.0, value / opacity));
     }
   });
@@ -143,27 +167,41 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
   const FastResolution& res = sh.res;
   const auto say = [&](double f) { reportProgress(progress, "multiple scattering", progressBase + progressSpan * f); };
   const SphereField field(res.radial, res.zenith, res.grading, res.linearShare, sigma, sh.coarse);
+  // The grid of orders 3 … ∞: `field` itself, or a coarser one for a thin particle.
+  const bool thin = sigma <= res.thinSigma;
+  std::unique_ptr<const SphereField> thinField;
+  if (thin)
+    thinField = std::make_unique<const SphereField>(res.thinRadial, res.thinZenith, res.grading, res.linearShare,
+                                                    sigma, sh.coarse);
+  const SphereField& later = thin ? *thinField : field;
 
   // J_2: the first scattering of sunlight, scattered once more.
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<float> J = firstScatteringSource(field, sh.fine, sh.M2t, sigma);
+  std::vector<float> J2;  // kept on its own grid when the later orders run on another
+  if (thin) {
+    J2 = std::move(J);
+    J = interpolateField(field, J2, later);
+  }
   const double tSource = seconds(t0);
   say(0.1);
 
   // K = M·T, its transport stencil built once for every order of this density.
   const auto t1 = std::chrono::steady_clock::now();
-  const TransportStencil transport(field, sigma, res.transportPoints);
-  ScatteringOperator K(transport, sh.Mt, field);
+  const TransportStencil transport(later, sigma,
+                                   sigma >= kFarPanelMaxSigma ? res.denseTransportPoints : res.transportPoints);
+  ScatteringOperator K(transport, sh.Mt, later);
   const double tStencil = seconds(t1);
   say(0.2);
 
-  // Orders 3 … N: J_{n+1} = K·J_n, summed from J_2 on. The loop stops early once an order's
-  // field total Σ J_n (over every node and direction, J ≥ 0) falls below
-  // kOrderTolerance · Σ (J_2 + … + J_n): the orders decay geometrically (ratio q < 1, small in
-  // thin particles), so the truncated rest is below kOrderTolerance · q/(1 − q) of the sum.
+  // Orders 3 … N: J_{n+1} = K·J_n, summed from J_2 on (from J_3 on when J_2 stays on its own
+  // grid). The loop stops early once an order's field total Σ J_n (over every node and
+  // direction, J ≥ 0) falls below kOrderTolerance · Σ (J_2 + … + J_n): the orders decay
+  // geometrically (ratio q < 1, small in thin particles), so the truncated rest is below
+  // kOrderTolerance · q/(1 − q) of the sum.
   const auto t2 = std::chrono::steady_clock::now();
   const int orders = sh.settings.orders;
-  std::vector<float> sum = J, next(field.size());
+  std::vector<float> sum = thin ? std::vector<float>(later.size(), 0.0f) : J, next(later.size());
   int applications = 0, lastOrder = 2;
   const int explicitOrders = orders > 0 ? orders : 18;
   double sumTotal = total(J);
@@ -184,8 +222,8 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
   std::vector<float> tail;
   if (orders <= 0 && !negligible) {  // a negligible order leaves a negligible tail
     // Orders N+1 … ∞: (I − K) X = K·J_N (TailSolver.h).
-    const CoarseCorrection B(field, transport.isotropicCoarseOperator());
-    std::vector<float> b(field.size());
+    const CoarseCorrection B(later, transport.isotropicCoarseOperator());
+    std::vector<float> b(later.size());
     K.apply(J, b);
     ++applications;
     TailSolution sol = solveTail(K, B, b, TailSettings{}, applications, [&](double f) { say(0.35 + 0.45 * f); });
@@ -196,9 +234,15 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
   const double tIterate = seconds(t2);
   say(0.8);
 
-  // Gather to the table nodes (the tail to its own table when the baker closes it on energy).
+  // Gather to the table nodes (the tail to its own table when the baker closes it on energy),
+  // from the grid of J_2: a thin particle's later orders are interpolated onto it first.
   const auto t3 = std::chrono::steady_clock::now();
   if (!tail.empty() && !tailTable) axpy(1.0f, tail, sum);  // no closure requested: plain sum
+  if (thin) {
+    sum = interpolateField(later, sum, field);
+    axpy(1.0f, J2, sum);
+    if (!tail.empty()) tail = interpolateField(later, tail, field);
+  }
   gatherTable(field, sum, sigma, res.gatherPoints, slice, table);
   if (tailTable && !tail.empty()) gatherTable(field, tail, sigma, res.gatherPoints, slice, *tailTable);
   const double tGather = seconds(t3);

@@ -8,6 +8,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "bake/Float4.h"
+
 namespace cloudlut::bake {
 
 namespace {
@@ -97,17 +99,51 @@ double sunlitRayIntegral(const glm::dvec3& x, const glm::dvec3& d, const glm::dv
 double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm::dvec3& l,
                              double sigma, double length) {
   if (!(length > 0.0) || !(sigma > 0.0)) return 0.0;
-  const GaussRule& g = gaussLegendre(8);
-  const double U = -std::expm1(-sigma * length);
-  const double edges[4] = {0.0, U / 16.0, U / 4.0, U};
-  double sum = 0.0;
-  for (int p = 0; p < 3; ++p) {
-    const double a = edges[p], w = edges[p + 1] - edges[p];
+  // In single precision, four Gauss nodes per SIMD step (expFloat4, logFloat4: their ~1e-7 is
+  // far below the rule's ~1e-3): the point at distance t is
+  // y = x + t d; with l's frame (e_z = l) its sun path is d_sun = −y_z + √(1 − |y_⊥|²), where
+  // |y_⊥|² = |x_⊥|² + 2t (x_⊥·d_⊥) + t²|d_⊥|² is a quadratic in t.
+  // The 8 Gauss nodes and weights of a panel as two four-lane vectors.
+  struct Weights {
+    Float4 x[2], w[2];
+  };
+  static const Weights g8 = [] {
+    const GaussRule& g = gaussLegendre(8);
+    Weights r{};
     for (int i = 0; i < 8; ++i) {
-      const double u = a + w * g.x[i];
-      const double t = -std::log1p(-u) / sigma;
-      sum += w * g.w[i] * std::exp(-sigma * sunPath(x + t * d, l));
+      r.x[i / 4][i % 4] = static_cast<float>(g.x[i]);
+      r.w[i / 4][i % 4] = static_cast<float>(g.w[i]);
     }
+    return r;
+  }();
+  const double xz = glm::dot(x, l), dz = glm::dot(d, l);
+  const float p0 = static_cast<float>(glm::dot(x, x) - xz * xz);
+  const float p1 = static_cast<float>(2.0 * (glm::dot(x, d) - xz * dz));
+  const float p2 = static_cast<float>(glm::dot(d, d) - dz * dz);
+  const float fz = static_cast<float>(xz), gz = static_cast<float>(dz), s = static_cast<float>(sigma);
+  const float invS = 1.0f / s, tMax = static_cast<float>(length);
+  const float U = static_cast<float>(-std::expm1(-sigma * length));
+  // Panels in u: [0, U/4] and [U/4, U]; one panel [0, U] when the ray's optical depth is at
+  // most 1 (measured on the default bake: the table moves by ≤ 2e-5 relative against the earlier
+  // three panels [0, U/16, U/4, U], whose first split changed nothing above float rounding).
+  const int panels = s * tMax <= 1.0f ? 1 : 2;
+  const float edges[3] = {0.0f, panels == 1 ? U : U / 4.0f, U};
+  float sum = 0.0f;
+  for (int p = 0; p < panels; ++p) {
+    const float a = edges[p], w = edges[p + 1] - edges[p];
+    Float4 part = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int h = 0; h < 2; ++h) {  // four nodes at a time
+      const Float4 u = a + w * g8.x[h];
+      Float4 t = -logFloat4(1.0f - u) * invS;
+      t = t < tMax ? t : Float4{tMax, tMax, tMax, tMax};
+      Float4 perp = 1.0f - (p0 + t * (p1 + t * p2));
+      Float4 root;
+      for (int k = 0; k < 4; ++k) root[k] = std::sqrt(std::max(0.0f, perp[k]));
+      Float4 sun = root - (fz + t * gz);
+      sun = sun > 0.0f ? sun : Float4{0.0f, 0.0f, 0.0f, 0.0f};
+      part += g8.w[h] * expFloat4(-s * sun);
+    }
+    sum += w * sumFloat4(part);
   }
   return sum;
 }
@@ -115,8 +151,6 @@ double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm
 namespace {
 // Optical depth of the near part of a ray (attenuatedRayRule).
 constexpr double kNearOpticalDepth = 6.0;
-// Optical radius from which the far panel is dropped.
-constexpr double kFarPanelMaxSigma = 20.0;
 
 // Gauss–Legendre panels [edges[p], edges[p+1]] in u = 1 − e^{−σs}, pts[p] points each, appended
 // as s = −ln(1 − u)/σ (at most `length`) with weights du: ∫ σe^{−σs} f ds = ∫ f du.

@@ -26,7 +26,8 @@ inline double sunPath(const glm::dvec3& x, const glm::dvec3& l) { return distanc
 double sunlitRayIntegral(const glm::dvec3& x, const glm::dvec3& d, const glm::dvec3& l,
                          double sigma, double length);
 
-// The same integral by a cheap fixed rule in u = 1 − e^{−σt} (three graded panels, 24 points);
+// The same integral by a cheap fixed rule in u = 1 − e^{−σt}, U = 1 − e^{−σ·length}: 8-point
+// Gauss–Legendre panels [0, U/4] and [U/4, U], or the single panel [0, U] when σ·length ≤ 1;
 // accurate to ~1e-3 relative, used where many rays are needed.
 double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm::dvec3& l,
                              double sigma, double length);
@@ -42,5 +43,7 @@ double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm
 // Fills s (distances from the ray's start, ascending within each panel) and w; `total` points
 // at least (every panel gets two or more).
 void attenuatedRayRule(double sigma, double length, int total, std::vector<double>& s, std::vector<double>& w);
+// Optical radius from which attenuatedRayRule drops the far panel (all points in u).
+inline constexpr double kFarPanelMaxSigma = 20.0;
 
 }  // namespace cloudlut::bake

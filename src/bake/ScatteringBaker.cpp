@@ -140,7 +140,9 @@ ScatteringResult bakeScattering(const ScatteringSettings& settings, const Progre
       if (converged) tail = makeTable(settings, "multiple_scattering_tail", kMultipleScatteringChannel, "orders 19 and up");
       report["resolution"] = {{"radial", res.radial}, {"zenith", res.zenith}, {"dir_theta", res.dirTheta},
                               {"dir_phi", res.dirPhi}, {"fine_theta", res.fineTheta}, {"fine_phi", res.finePhi},
-                              {"transport_points", res.transportPoints}, {"gather_points", res.gatherPoints}};
+                              {"transport_points", res.transportPoints}, {"dense_transport_points", res.denseTransportPoints},
+                              {"gather_points", res.gatherPoints},
+                              {"thin", {{"max_sigma", res.thinSigma}, {"radial", res.thinRadial}, {"zenith", res.thinZenith}}}};
       // The density slices are independent (each writes its own slice of the tables), so they
       // run side by side as well as inside: the serial parts of one slice (the coarse
       // correction's factorisation, GMRES's small steps) overlap another slice's work.

@@ -16,21 +16,21 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-void convolvePhase(const std::vector<float>& in, int inCols, const std::vector<float>& Mt, int cols, int nodes,
-                   std::vector<float>& out) {
-  // One matrix product out = in · Mt (row-major), by Eigen's blocked kernel over fixed blocks of
-  // rows: the blocks do not depend on the thread count, so neither does any sum's order.
+void convolvePhase(const std::vector<float>& in, int inDirs, const std::vector<float>& Mt, int outDirs,
+                   const SphereField& field, std::vector<float>& out) {
+  // Per radial node one matrix product out_r = M · in_r (M = Mt read column-major, outDirs ×
+  // inDirs; in_r inDirs × nt and out_r outDirs × nt row-major), by Eigen's blocked kernel: the
+  // products do not depend on the thread count, so neither does any sum's order.
   using RowMajor = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  const Eigen::Map<const RowMajor> m(Mt.data(), inCols, cols);
-  constexpr int kRows = 32;
+  const Eigen::Map<const Eigen::MatrixXf> m(Mt.data(), outDirs, inDirs);
+  const int nt = field.zenithCount();
   tbb::parallel_for(
-      tbb::blocked_range<int>(0, (nodes + kRows - 1) / kRows, 1),
+      tbb::blocked_range<int>(0, field.radialCount(), 1),
       [&](const tbb::blocked_range<int>& r) {
-        for (int blk = r.begin(); blk != r.end(); ++blk) {
-          const int s0 = blk * kRows, n = std::min(nodes, s0 + kRows) - s0;
-          const Eigen::Map<const RowMajor> a(&in[static_cast<std::size_t>(s0) * inCols], n, inCols);
-          Eigen::Map<RowMajor> o(&out[static_cast<std::size_t>(s0) * cols], n, cols);
-          o.noalias() = a * m;
+        for (int ir = r.begin(); ir != r.end(); ++ir) {
+          const Eigen::Map<const RowMajor> a(&in[static_cast<std::size_t>(ir) * inDirs * nt], inDirs, nt);
+          Eigen::Map<RowMajor> o(&out[static_cast<std::size_t>(ir) * outDirs * nt], outDirs, nt);
+          o.noalias() = m * a;
         }
       },
       tbb::simple_partitioner());
@@ -43,17 +43,19 @@ TransportStencil::TransportStencil(const SphereField& field, double sigma, int p
   K_ = static_cast<int>(probeS.size());
   const DirectionGrid& dirs = field.directions();
   const int D = dirs.count(), nb = dirs.phiCount();
-  entries_.resize(field.size() * static_cast<std::size_t>(K_));
+  entries_.reset(new Entry[field.size() * static_cast<std::size_t>(K_)]);
   counts_.assign(field.size(), 0);
+  std::vector<glm::dvec3> directions(static_cast<std::size_t>(D));
+  for (int d = 0; d < D; ++d) directions[static_cast<std::size_t>(d)] = dirs.direction(d);
   tbb::parallel_for(0, field.nodeCount(), [&](int s) {
     std::vector<double> ss, ww;
     const glm::dvec3 x = field.node(s);
     for (int d = 0; d < D; ++d) {
       const int ia = d / nb;
-      const glm::dvec3 w = dirs.direction(d);
+      const glm::dvec3& w = directions[static_cast<std::size_t>(d)];
       attenuatedRayRule(sigma, distanceToSphere(x, -w), points, ss, ww);
       const double wh = std::hypot(w.x, w.y);
-      const std::size_t cell = static_cast<std::size_t>(s) * D + d;
+      const std::size_t cell = field.index(s, d);
       Entry* e = &entries_[cell * K_];
       // Points of zero weight (the far panel of a ray shorter than its near optical depth)
       // contribute exactly nothing: they are left out, the rest packed at the cell's start.
@@ -62,7 +64,7 @@ TransportStencil::TransportStencil(const SphereField& field, double sigma, int p
         if (!(ww[k] != 0.0)) continue;
         const FieldPoint p = field.locate(x - ss[k] * w, w, wh);
         Entry& q = e[used++];
-        q.base = static_cast<std::uint32_t>(p.offset + static_cast<std::size_t>(ia) * nb);
+        q.base = static_cast<std::uint32_t>(p.offset + static_cast<std::size_t>(ia) * nb * field.directionStride());
         for (int c = 0; c < 4; ++c) {
           q.wr[c] = static_cast<float>(ww[k]) * p.wr[c];
           q.wt[c] = p.wt[c];
@@ -75,34 +77,36 @@ TransportStencil::TransportStencil(const SphereField& field, double sigma, int p
 }
 
 void TransportStencil::apply(const std::vector<float>& in, std::vector<float>& out) const {
-  const int D = field_->directionCount();
-  const std::size_t strideR = field_->radialStride(), strideT = field_->zenithStride();
-  tbb::parallel_for(0, field_->nodeCount(), [&](int s) {
-    for (int d = 0; d < D; ++d) {
-      const std::size_t cell = static_cast<std::size_t>(s) * D + d;
+  // Cells in the field's own order: out[cell] = Σ_k (in interpolated at point k), the four
+  // zenith terms of every point summed as one vector, added up at the end.
+  const std::size_t strideR = field_->radialStride(), strideB = field_->directionStride();
+  const float* src = in.data();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, field_->size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t cell = r.begin(); cell != r.end(); ++cell) {
       const Entry* e = &entries_[cell * K_];
-      float acc = 0.0f;
-      for (int k = 0, n = counts_[cell]; k < n; ++k) accumulateField(&in[e[k].base], strideR, strideT, e[k].wr, e[k].wt, e[k].fb, acc);
-      out[cell] = acc;
+      Float4 acc = {0.0f, 0.0f, 0.0f, 0.0f};
+      for (int k = 0, n = counts_[cell]; k < n; ++k)
+        acc += interpolateFieldTerms(src + e[k].base, strideR, strideB, e[k].wr, e[k].wt, e[k].fb);
+      out[cell] = sumFloat4(acc);
     }
   });
 }
 
 std::vector<double> TransportStencil::isotropicCoarseOperator() const {
   const int NS = field_->nodeCount(), D = field_->directionCount(), nt = field_->zenithCount();
-  const std::size_t strideR = field_->radialStride(), strideT = field_->zenithStride();
+  const std::size_t strideR = field_->radialStride();
   const std::vector<double>& q = field_->directions().nodeWeights();
   const double inv4pi = 1.0 / (4.0 * kPi);
   std::vector<double> Kc(static_cast<std::size_t>(NS) * NS, 0.0);
   tbb::parallel_for(0, NS, [&](int sIdx) {
     double* row = &Kc[static_cast<std::size_t>(sIdx) * NS];
     for (int dd = 0; dd < D; ++dd) {
-      const std::size_t cell = static_cast<std::size_t>(sIdx) * D + dd;
+      const std::size_t cell = field_->index(sIdx, dd);
       const Entry* e = &entries_[cell * K_];
       const double qd = q[dd] * inv4pi;
       for (int k = 0, n = counts_[cell]; k < n; ++k) {
         const std::size_t base = e[k].base;
-        const int ir0 = static_cast<int>(base / strideR), it0 = static_cast<int>((base % strideR) / strideT);
+        const int ir0 = static_cast<int>(base / strideR), it0 = static_cast<int>(base % static_cast<std::size_t>(nt));
         for (int c = 0; c < 4; ++c)
           for (int t = 0; t < 4; ++t) row[(ir0 + c) * nt + it0 + t] += qd * e[k].wr[c] * e[k].wt[t];
       }
@@ -118,7 +122,7 @@ ScatteringOperator::ScatteringOperator(const TransportStencil& transport, const 
 void ScatteringOperator::apply(const std::vector<float>& in, std::vector<float>& out) {
   transport_->apply(in, scratch_);
   const int D = field_->directionCount();
-  convolvePhase(scratch_, D, *Mt_, D, field_->nodeCount(), out);
+  convolvePhase(scratch_, D, *Mt_, D, *field_, out);
 }
 
 }  // namespace cloudlut::bake

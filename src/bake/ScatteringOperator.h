@@ -8,16 +8,18 @@
 //     far panel of a short ray) are left out of it.
 //   M (phase convolution): J'(x, ω) = Σ_ω' M(ω, ω') L(x, ω'), one dense matrix product.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "bake/SphereField.h"
 
 namespace cloudlut::bake {
 
-// out[s][i] = Σ_j in[s][j] · Mt[j][i] for every spatial node s of `nodes`: in has inCols values
-// per node, Mt is inCols × cols (a phase matrix transposed), out has cols values per node.
-void convolvePhase(const std::vector<float>& in, int inCols, const std::vector<float>& Mt, int cols, int nodes,
-                   std::vector<float>& out);
+// out(s, i) = Σ_j Mt[j·outDirs + i] · in(s, j) at every spatial node s of `field`, both in the
+// field's layout (SphereField.h): in with inDirs directions per node, out with outDirs; Mt is
+// inDirs × outDirs row-major (a phase matrix transposed).
+void convolvePhase(const std::vector<float>& in, int inDirs, const std::vector<float>& Mt, int outDirs,
+                   const SphereField& field, std::vector<float>& out);
 
 class TransportStencil {
  public:
@@ -42,7 +44,9 @@ class TransportStencil {
   };
   const SphereField* field_;
   int K_ = 0;
-  std::vector<Entry> entries_;  // K per (node, direction), cell-major
+  // K per (node, direction) in the field's order; left uninitialised (no 10⁸-byte clearing per
+  // density): only the first counts_[cell] of a cell are written and read.
+  std::unique_ptr<Entry[]> entries_;
   std::vector<std::uint8_t> counts_;  // points of nonzero weight per cell (packed first)
 };
 

@@ -9,32 +9,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-void cubicWeights(double x, int n, int& start, float w[4]) {
-  const int i = std::clamp(static_cast<int>(x), 0, n - 2);
-  const double f = std::clamp(x - i, 0.0, 1.0);
-  if (i == 0) {
-    start = 0;
-    w[0] = static_cast<float>((f - 1) * (f - 2) / 2);
-    w[1] = static_cast<float>(-f * (f - 2));
-    w[2] = static_cast<float>(f * (f - 1) / 2);
-    w[3] = 0.0f;
-  } else if (i == n - 2) {
-    start = n - 4;
-    const double y = f + 1.0;  // relative to node n − 3
-    w[0] = 0.0f;
-    w[1] = static_cast<float>((y - 1) * (y - 2) / 2);
-    w[2] = static_cast<float>(-y * (y - 2));
-    w[3] = static_cast<float>(y * (y - 1) / 2);
-  } else {
-    start = i - 1;
-    const double f2 = f * f, f3 = f2 * f;
-    w[0] = static_cast<float>((-f3 + 2 * f2 - f) / 2);
-    w[1] = static_cast<float>((3 * f3 - 5 * f2 + 2) / 2);
-    w[2] = static_cast<float>((-3 * f3 + 4 * f2 + f) / 2);
-    w[3] = static_cast<float>((f3 - f2) / 2);
-  }
-}
-
 RadialAxis::RadialAxis(int nodes, double A, double linearShare)
     : n_(nodes), A_(A), alpha_(A > 1e-9 ? linearShare : 1.0), logA_(A > 1e-9 ? std::log1p(A) : 1.0) {
   // Node i: the depth δ with q(δ) = i/(n−1), by bisection.
@@ -56,7 +30,13 @@ double RadialAxis::qOfDepth(double d) const {
 
 double RadialAxis::q(double r) const { return qOfDepth(std::clamp(1.0 - r, 0.0, 1.0)); }
 
-void RadialAxis::cubic(double r, int& start, float w[4]) const { cubicWeights(q(r) * (n_ - 1), n_, start, w); }
+void RadialAxis::cubic(float r, int& start, float w[4]) const {
+  const float d = std::clamp(1.0f - r, 0.0f, 1.0f);
+  const float q = A_ > 1e-9 ? static_cast<float>(alpha_) * d +
+                                  static_cast<float>((1.0 - alpha_) / logA_) * std::log(1.0f + static_cast<float>(A_) * d)
+                            : d;
+  cubicWeights(q * static_cast<float>(n_ - 1), n_, start, w);
+}
 
 SphereField::SphereField(int nr, int nt, double grading, double linearShare, double sigma,
                          const DirectionGrid& directions)
@@ -70,20 +50,24 @@ SphereField::SphereField(int nr, int nt, double grading, double linearShare, dou
 }
 
 FieldPoint SphereField::locate(const glm::dvec3& y, const glm::dvec3& w, double wh) const {
+  // Angles and the depth coordinate in single precision (float atan2 and log1p cost about half
+  // of double; a node coordinate off by 1e-6 of a cell moves nothing that matters).
   FieldPoint p;
-  const double rho = std::hypot(y.x, y.y);
-  const double r = std::sqrt(rho * rho + y.z * y.z);
+  const double rho2 = y.x * y.x + y.y * y.y;
+  const float rho = static_cast<float>(std::sqrt(rho2));
+  const float r = static_cast<float>(std::sqrt(rho2 + y.z * y.z));
   int ir, it, ib;
   radial_.cubic(r, ir, p.wr);
-  cubicWeights(std::atan2(rho, y.z) / kPi * (nt_ - 1), nt_, it, p.wt);
+  cubicWeights(std::atan2(rho, static_cast<float>(y.z)) * static_cast<float>((nt_ - 1) / kPi), nt_, it, p.wt);
   // Relative azimuth of the direction about l, folded to [0, π].
-  double phi = 0.0;
-  if (rho > 1e-12 && wh > 1e-12) phi = std::abs(std::atan2(w.y * y.x - w.x * y.y, w.x * y.x + w.y * y.y));
+  float phi = 0.0f;
+  if (rho > 1e-12f && wh > 1e-12)
+    phi = std::abs(std::atan2(static_cast<float>(w.y * y.x - w.x * y.y), static_cast<float>(w.x * y.x + w.y * y.y)));
   double fb;
   directions_->locatePhi(phi, ib, fb);
   p.fb = static_cast<float>(fb);
-  p.offset = static_cast<std::size_t>(ir) * radialStride() + static_cast<std::size_t>(it) * zenithStride() +
-             static_cast<std::size_t>(ib);
+  p.offset = static_cast<std::size_t>(ir) * radialStride() + static_cast<std::size_t>(ib) * directionStride() +
+             static_cast<std::size_t>(it);
   return p;
 }
 

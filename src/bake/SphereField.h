@@ -5,16 +5,21 @@
 // A field J(x, ω) inside the unit sphere lit along −l is symmetric about l, so it is stored
 // in the meridian plane: nr depth-graded radial nodes × nt position-zenith nodes (the spatial
 // nodes s = ir·nt + it) × the D directions of a light-frame DirectionGrid (d = a·nb + b).
-// Value (s, d) sits at s·D + d. A sample at any point y and direction w is rotated about l
+// Value (s, d) sits at (ir·D + d)·nt + it: the position zenith is the fastest axis, so the four
+// zenith nodes of an interpolation stencil are contiguous (one short vector per radial node
+// and azimuth), and per radial node the field is a D × nt matrix (the phase convolution is one
+// matrix product per radial node). A sample at any point y and direction w is rotated about l
 // into the meridian plane and interpolated with quadratic-exact four-node weights in depth
 // and in position zenith and linearly in the relative azimuth; the direction's zenith node is
 // chosen by the caller (it is constant along a ray).
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "bake/DirectionGrid.h"
+#include "bake/Float4.h"
 
 namespace cloudlut::bake {
 
@@ -23,7 +28,32 @@ namespace cloudlut::bake {
 // three-point Lagrange in the first and last intervals. Linear interpolation of a curved field
 // in an optically thick medium acts like extra diffusion (it widens every step of the random
 // walk to the grid spacing); quadratic exactness removes that leading error.
-void cubicWeights(double x, int n, int& start, float w[4]);
+// Inline: it runs for every point of every transport stencil.
+inline void cubicWeights(float x, int n, int& start, float w[4]) {
+  const int i = std::clamp(static_cast<int>(x), 0, n - 2);
+  const float f = std::clamp(x - static_cast<float>(i), 0.0f, 1.0f);
+  if (i == 0) {
+    start = 0;
+    w[0] = (f - 1) * (f - 2) / 2;
+    w[1] = -f * (f - 2);
+    w[2] = f * (f - 1) / 2;
+    w[3] = 0.0f;
+  } else if (i == n - 2) {
+    start = n - 4;
+    const float y = f + 1.0f;  // relative to node n − 3
+    w[0] = 0.0f;
+    w[1] = (y - 1) * (y - 2) / 2;
+    w[2] = -y * (y - 2);
+    w[3] = y * (y - 1) / 2;
+  } else {
+    start = i - 1;
+    const float f2 = f * f, f3 = f2 * f;
+    w[0] = (-f3 + 2 * f2 - f) / 2;
+    w[1] = (3 * f3 - 5 * f2 + 2) / 2;
+    w[2] = (-3 * f3 + 4 * f2 + f) / 2;
+    w[3] = (f3 - f2) / 2;
+  }
+}
 
 // Depth-graded radial axis: node i of n at q = i/(n−1), with
 //   q(δ) = α δ + (1 − α) ln(1 + A δ) / ln(1 + A),   δ = 1 − r (depth below the surface):
@@ -35,8 +65,8 @@ class RadialAxis {
   double radius(int i) const { return radii_[static_cast<std::size_t>(i)]; }
   // q(δ) at the radius r (clamped to [0, 1]).
   double q(double r) const;
-  // Four-node weights (cubicWeights) in q at the radius r.
-  void cubic(double r, int& start, float w[4]) const;
+  // Four-node weights (cubicWeights) in q at the radius r (single precision).
+  void cubic(float r, int& start, float w[4]) const;
 
  private:
   double qOfDepth(double d) const;
@@ -55,16 +85,18 @@ struct FieldPoint {
   float fb = 0.0f;
 };
 
-// acc += Σ_j wr[j] · Σ_t wt[t] · (p[j, t] + fb · (p[j, t, b+1] − p[j, t])), term by term over j,
-// for p pointing at the first node of the stencil (its direction already chosen).
-inline void accumulateField(const float* p, std::size_t strideR, std::size_t strideT, const float wr[4],
-                            const float wt[4], float fb, float& acc) {
+// The terms wt[t] · Σ_c wr[c] · (p[c, t] + fb · (p[c, t, b+1] − p[c, t])), t = 0 … 3, for p
+// pointing at the first node of the stencil (its direction already chosen): radial node c at
+// p + c·strideR, zenith node t at p + t (contiguous), the next azimuth node at + strideB. Their
+// sum (sumFloat4) is the field interpolated at the point.
+inline Float4 interpolateFieldTerms(const float* p, std::size_t strideR, std::size_t strideB, const float wr[4],
+                                    const float wt[4], float fb) {
+  Float4 v = {0.0f, 0.0f, 0.0f, 0.0f};
   for (int c = 0; c < 4; ++c, p += strideR) {
-    const float* pt = p;
-    float a = 0.0f;
-    for (int t = 0; t < 4; ++t, pt += strideT) a += wt[t] * (pt[0] + fb * (pt[1] - pt[0]));
-    acc += wr[c] * a;
+    const Float4 a = loadFloat4(p), b = loadFloat4(p + strideB);
+    v += wr[c] * (a + fb * (b - a));
   }
+  return loadFloat4(wt) * v;
 }
 
 // The grid of one density slice (optical radius σ): layout, radial axis and node positions.
@@ -79,15 +111,22 @@ class SphereField {
   int nodeCount() const { return nr_ * nt_; }  // NS
   int directionCount() const { return directions_->count(); }  // D
   std::size_t size() const { return static_cast<std::size_t>(nodeCount()) * directionCount(); }
+  // Offsets in the layout of the header comment: one radial node, one direction (d → d + 1).
   std::size_t radialStride() const { return static_cast<std::size_t>(nt_) * directionCount(); }
-  std::size_t zenithStride() const { return static_cast<std::size_t>(directionCount()); }
+  std::size_t directionStride() const { return static_cast<std::size_t>(nt_); }
+  // Index of value (spatial node s, direction d).
+  std::size_t index(int s, int d) const {
+    return (static_cast<std::size_t>(s / nt_) * directionCount() + static_cast<std::size_t>(d)) * nt_ +
+           static_cast<std::size_t>(s % nt_);
+  }
   const DirectionGrid& directions() const { return *directions_; }
   // Position of spatial node s = ir·nt + it in the meridian plane (y = 0).
   const glm::dvec3& node(int s) const { return nodes_[static_cast<std::size_t>(s)]; }
 
   // The interpolation stencil of the field at the point y (|y| ≤ 1) for the direction w, whose
   // length in the plane perpendicular to l is wh = hypot(w.x, w.y) (passed in: it is constant
-  // along a ray). Its offset excludes the direction zenith: add a·nb for zenith node a.
+  // along a ray). Its offset excludes the direction zenith: add a·nb·directionStride() for
+  // zenith node a.
   FieldPoint locate(const glm::dvec3& y, const glm::dvec3& w, double wh) const;
 
  private:

@@ -30,14 +30,14 @@ void CoarseCorrection::apply(const std::vector<float>& in, std::vector<float>& o
   std::vector<double> mean(static_cast<std::size_t>(NS), 0.0);
   tbb::parallel_for(0, NS, [&](int sIdx) {
     double m = 0.0;
-    for (int dd = 0; dd < D; ++dd) m += q[dd] * in[static_cast<std::size_t>(sIdx) * D + dd];
+    for (int dd = 0; dd < D; ++dd) m += q[dd] * in[field_->index(sIdx, dd)];
     mean[sIdx] = m * inv4pi;
   });
   const Eigen::VectorXd corr = lu_.solve(Eigen::Map<const Eigen::VectorXd>(mean.data(), NS));
   tbb::parallel_for(0, NS, [&](int sIdx) {
     const float c = static_cast<float>(corr[sIdx] - mean[sIdx]);
     for (int dd = 0; dd < D; ++dd) {
-      const std::size_t i = static_cast<std::size_t>(sIdx) * D + dd;
+      const std::size_t i = field_->index(sIdx, dd);
       out[i] = in[i] + c;
     }
   });

@@ -1,0 +1,67 @@
+#include "bake/Float4.h"
+
+namespace cloudlut::bake {
+
+namespace {
+// ln 2 = kLn2Hi + kLn2Lo, kLn2Hi with few mantissa bits (n · kLn2Hi exact for |n| < 2^9).
+constexpr float kLn2Hi = 0.693359375f, kLn2Lo = -2.12194440e-4f;
+constexpr float kLog2e = 1.44269504088896341f;
+
+Float4 splat(float v) { return Float4{v, v, v, v}; }
+
+Float4 fromBits(Int4 b) {
+  Float4 f;
+  std::memcpy(&f, &b, sizeof f);
+  return f;
+}
+Int4 toBits(Float4 f) {
+  Int4 b;
+  std::memcpy(&b, &f, sizeof b);
+  return b;
+}
+}  // namespace
+
+Float4 expFloat4(Float4 x) {
+  const Int4 under = x < -87.3f;  // −1 where e^x is below the normal range
+  x = x < -87.3f ? splat(-87.3f) : x;
+  // n = round(x / ln 2), as floor(x log2 e + 1/2) (conversion truncates toward zero)
+  const Float4 fx = x * kLog2e + 0.5f;
+  Float4 n = __builtin_convertvector(__builtin_convertvector(fx, Int4), Float4);
+  n = n > fx ? n - 1.0f : n;
+  const Float4 r = (x - n * kLn2Hi) - n * kLn2Lo;
+  // e^r = 1 + r + r² Q(r), Q by minimax on |r| ≤ ln 2 / 2
+  Float4 q = splat(1.9875691500e-4f);
+  q = q * r + 1.3981999507e-3f;
+  q = q * r + 8.3334519073e-3f;
+  q = q * r + 4.1665795894e-2f;
+  q = q * r + 1.6666665459e-1f;
+  q = q * r + 5.0000001201e-1f;
+  const Float4 er = (q * (r * r) + r) + 1.0f;
+  const Int4 scale = (__builtin_convertvector(n, Int4) + 127) << 23;  // 2^n
+  const Float4 y = er * fromBits(scale);
+  return under ? splat(0.0f) : y;
+}
+
+Float4 logFloat4(Float4 x) {
+  const Int4 bits = toBits(x);
+  Int4 e = ((bits >> 23) & 0xff) - 126;                 // x = m 2^e, m ∈ [1/2, 1)
+  Float4 m = fromBits((bits & 0x007fffff) | 0x3f000000);
+  const Int4 low = m < 0.70710678118654752f;            // m < √½: use 2m, e − 1
+  e = low ? e - 1 : e;
+  const Float4 z = low ? (m + m) - 1.0f : m - 1.0f;     // z ∈ [√½ − 1, √2 − 1)
+  Float4 p = splat(7.0376836292e-2f);
+  p = p * z - 1.1514610310e-1f;
+  p = p * z + 1.1676998740e-1f;
+  p = p * z - 1.2420140846e-1f;
+  p = p * z + 1.4249322787e-1f;
+  p = p * z - 1.6668057665e-1f;
+  p = p * z + 2.0000714765e-1f;
+  p = p * z - 2.4999993993e-1f;
+  p = p * z + 3.3333331174e-1f;
+  const Float4 z2 = z * z, fe = __builtin_convertvector(e, Float4);
+  Float4 y = z * z2 * p + fe * kLn2Lo;
+  y = y - 0.5f * z2;
+  return (z + y) + fe * kLn2Hi;
+}
+
+}  // namespace cloudlut::bake
