@@ -8,4 +8,5 @@ bash scripts/build.sh
 ./build/cloudlut bench --out out/bench "$@"
 /usr/bin/python3 scripts/plot_bench.py out/bench/bench.csv out/bench/speed_accuracy.png
 /usr/bin/python3 scripts/plot_render_bench.py out/bench/bench.csv out/bench/ground_truth.png || true
-echo "charts: out/bench/speed_accuracy.png out/bench/ground_truth.png"
+/usr/bin/python3 scripts/plot_atmosphere_bench.py out/bench/bench.csv out/bench/atmosphere.png || true
+echo "charts: out/bench/speed_accuracy.png out/bench/ground_truth.png out/bench/atmosphere.png"
