@@ -1,8 +1,10 @@
-// cloudlut_glsl.hpp — the shared GLSL (parameterization and phase functions) compiled as C++
-// through GLM, for engines' CPU code and for cloudlut itself: the same source the shaders use,
-// so CPU and GPU cannot disagree. Everything lands in namespace cloudlut::glsl.
+// cloudlut_glsl.hpp — the shared GLSL (parameterization, phase and shading functions, the
+// atmosphere, the detail noise) compiled as C++ through GLM, for engines' CPU code and for
+// cloudlut itself: the same source the shaders use, so CPU and GPU cannot disagree. Everything lands in namespace cloudlut::glsl.
 #ifndef CLOUDLUT_GLSL_HPP
 #define CLOUDLUT_GLSL_HPP
+
+#include <cstdint>
 
 #include <glm/glm.hpp>
 
@@ -11,6 +13,7 @@ using glm::abs;
 using glm::acos;
 using glm::asinh;
 using glm::atan;
+using glm::ceil;
 using glm::clamp;
 using glm::cos;
 using glm::cross;
@@ -31,6 +34,7 @@ using glm::sqrt;
 using glm::vec2;
 using glm::vec3;
 using glm::vec4;
+using uint = std::uint32_t;
 
 // An atmosphere table as the shared GLSL samples it (cloudlut_atmosphere_tables.glsl): `width` ×
 // `height` RGB texels, x fastest (the Table4D layout of a table whose axes 2 and 3 have one
@@ -67,6 +71,7 @@ inline vec3 atmosphereTexture(const AtmosphereTexture& t, vec2 uv) {
 #include "glsl/cloudlut_atmosphere_tables.glsl"
 #include "glsl/cloudlut_atmosphere_sky.glsl"
 #include "glsl/cloudlut_atmosphere_nodes.glsl"
+#include "glsl/cloudlut_detail_noise.glsl"
 #undef CLOUDLUT_FN
 }  // namespace cloudlut::glsl
 

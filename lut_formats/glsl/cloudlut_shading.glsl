@@ -32,10 +32,16 @@ CLOUDLUT_FN float singleScatteringToTable(float meanSource) {
   return max(log2(max(meanSource, 1e-30f)), CLOUDLUT_LOG2_SOURCE_FLOOR);
 }
 
+// The mean source J̄1 (dimensionless) from the single table's stored value: 2^stored, 0 at the
+// floor.
+CLOUDLUT_FN float singleSourceFromTable(float stored) {
+  return stored <= CLOUDLUT_LOG2_SOURCE_FLOOR ? 0.0f : exp2(stored);
+}
+
 // Single-scattered radiance without the phase function, per unit sun irradiance, of a chord of
 // optical depth τ, from the single table's stored value: (1 − e^{−τ}) · 2^stored.
 CLOUDLUT_FN float singleScatteringFromTable(float stored, float tau) {
-  return stored <= CLOUDLUT_LOG2_SOURCE_FLOOR ? 0.0f : chordOpacity(tau) * exp2(stored);
+  return chordOpacity(tau) * singleSourceFromTable(stored);
 }
 
 // Multiply-scattered radiance per unit sun irradiance (sr⁻¹) of a chord of optical depth τ,

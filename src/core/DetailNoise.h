@@ -1,30 +1,14 @@
 #pragma once
-// The detail noise of the cloud density (seed §5.4): its parameters, and the shared GLSL of
-// lut_formats/glsl/cloudlut_detail_noise.glsl compiled as C++ through GLM (in namespace
-// cloudlut::glsl, beside core/Glsl.h), the same source the particle shader uses. The path tracer
-// multiplies the extinction at x by detailDensityFactor(x, packed()); the renderer a chord's
-// optical depth by detailChordFactor (the mean of that factor along it).
-#include <cstdint>
+// The detail noise of the cloud density (seed §5.4): its parameters. Its function is the shared
+// GLSL of lut_formats/glsl/cloudlut_detail_noise.glsl, compiled as C++ with the rest of the
+// shared GLSL (core/Glsl.h, namespace cloudlut::glsl), the same source the particle shader
+// uses. The path tracer multiplies the extinction at x by detailDensityFactor(x, packed()); the
+// renderer a chord's optical depth by detailChordFactor (the mean of that factor along it).
+#include <glm/vec4.hpp>
 
-#include <glm/glm.hpp>
+#include "core/Glsl.h"
 
 namespace cloudlut {
-namespace glsl {
-using glm::ceil;
-using glm::clamp;
-using glm::dot;
-using glm::floor;
-using glm::length;
-using glm::log2;
-using glm::max;
-using glm::mix;
-using glm::vec3;
-using glm::vec4;
-using uint = std::uint32_t;
-#define CLOUDLUT_FN inline
-#include "glsl/cloudlut_detail_noise.glsl"
-#undef CLOUDLUT_FN
-}  // namespace glsl
 
 // Limits of the parameters (scene files, presets and options alike).
 inline constexpr float kMaxDetailAmplitude = 1.0f;  // m = 1 + a·n stays ≥ 0

@@ -114,8 +114,7 @@ void main() {
   float single = 0.0;
   if ((uTerms & 1) != 0) {
     vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleAxes, float(uSingleDims.w));
-    float stored = cloudlutSample4D(uSingle, x, uSingleDims).x;
-    float source = stored <= CLOUDLUT_LOG2_SOURCE_FLOOR ? 0.0 : exp2(stored);
+    float source = singleSourceFromTable(cloudlutSample4D(uSingle, x, uSingleDims).x);
     if (uLighting != 0 && uSunlightVolume != 0) source = singleSunTransmittance(source, sunTau.y - sunTau.x);
     single = phaseFunction(uFirstPhaseKind, dot(dir, uSunDirection), uFirstPhaseParam) * chordOpacity(tau) * source;
   }
