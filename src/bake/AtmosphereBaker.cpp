@@ -89,15 +89,13 @@ void fillMultipleByOrders(Table4D& table, const glsl::AtmosphereParameters& a, c
     last = std::move(next);
     for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += last.moments[k];
   }
-  if (!s.multipleTail) {
-    std::copy(sum.begin(), sum.end(), table.data().begin());
-    return;
-  }
   const auto at = [](const std::vector<float>& v, std::size_t k) { return glm::vec3(v[k], v[k + 1], v[k + 2]); };
   for (std::size_t k = 0; k < kBlock; k += 3) {
-    // the ratio of the last two orders' averages (block 0); none with one order
-    const glm::vec3 q = s.multipleOrders > 1 ? glsl::multipleScatteringOrderRatio(at(last.moments, k), at(previous.moments, k))
-                                             : glm::vec3(0.0f);
+    // the ratio of the last two orders' averages (block 0); none with one order or without the
+    // tail (q = 0: the sum of the orders baked, exactly)
+    const glm::vec3 q = s.multipleTail && s.multipleOrders > 1
+                            ? glsl::multipleScatteringOrderRatio(at(last.moments, k), at(previous.moments, k))
+                            : glm::vec3(0.0f);
     for (int b = 0; b < kBlocks; ++b) {
       const std::size_t m = b * kBlock + k;
       const glm::vec3 v = glsl::multipleScatteringFromOrders(at(sum, m), at(last.moments, m), q);

@@ -47,7 +47,7 @@ void main() {
   if (ground) {
     float t = distanceToGround(uAtmosphere, r, mu);
     vec3 g = uEyePlanet + t * d;
-    float shadow = slabTransmittance(sunOpticalDepth(uEyeWorld + t * d), uLaterAsymmetry);
+    float shadow = cloudSunVisibility(uEyeWorld + t * d);
     vec3 Lg = groundRadiance(uAtmosphere, uTransmittance, uIrradiance, dot(normalize(g), uSun), shadow);
     background = inScatter + transmittanceAlongRay(uAtmosphere, uTransmittance, r, mu, t, true) * Lg;
   } else {
@@ -55,7 +55,7 @@ void main() {
   }
   vec3 L = background;
   if (cloud) {
-    float w = sqrt(clamp(dist / uAerialMax, 0.0, 1.0)) * float(AERIAL_SLICES) - 1.0;  // slice coordinate
+    float w = aerialSliceCoordinate(dist);
     vec3 tc = vec3(uv, (max(w, 0.0) + 0.5) / float(AERIAL_SLICES));
     vec3 S = texture(uAerialInScatter, tc).rgb, T = texture(uAerialTransmittance, tc).rgb;
     if (w < 0.0) {  // closer than the first slice: scale toward the camera

@@ -1,9 +1,9 @@
 // sky_shafts.comp.glsl — the light shafts' loss ΔL (sky_shafts.glsl) of one frame: per screen cell
-// of SHAFT_CELL × SHAFT_CELL pixels (the ray through its centre), the cumulative loss at each
+// of SkyPass::kShaftCell × kShaftCell pixels (the ray through its centre), the cumulative loss at each
 // aerial slice distance d_k, RGB, sr⁻¹ per unit sun irradiance. Each slice's stretch of the ray
 // inside the sun volume is cut into SHAFT_PIECES equal pieces, each losing
 // (S₁(t_b) − S₁(t_a)) (1 − V(x at its middle)). Needs sky_uniforms.glsl, cloudlut_shading.glsl
-// (slabTransmittance), the sun volume's sampling code and sky_shafts.glsl.
+// (slabTransmittance), the sun volume's sampling code, sky_aerial_slices.glsl and sky_shafts.glsl.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = 0) uniform writeonly image3D uShaftLoss;
 uniform sampler3D uAerialSingle;  // S₁ at the aerial slices (sky_aerial.comp.glsl)
@@ -27,7 +27,7 @@ void main() {
       for (int i = 0; i < SHAFT_PIECES; ++i) {
         float ta = a + float(i) * piece;
         vec3 Sb = cumulativeAt(uAerialSingle, uv, ta + piece);
-        float shadow = 1.0 - slabTransmittance(sunOpticalDepth(uEyeWorld + (ta + 0.5 * piece) * d), uLaterAsymmetry);
+        float shadow = 1.0 - cloudSunVisibility(uEyeWorld + (ta + 0.5 * piece) * d);
         loss += (Sb - Sa) * shadow;
         Sa = Sb;
       }

@@ -5,24 +5,23 @@
 // volume's optical depth toward the sun; the same share lights the ground in the clouds'
 // shadow), so the ray loses
 //   ΔL(t) = ∫₀ᵗ (1 − V(x(s))) dS₁(s).
-// sky_shafts.comp.glsl tabulates ΔL per screen cell of SHAFT_CELL × SHAFT_CELL pixels at the
-// aerial volume's slice distances; the composite reads it at each pixel's distances
-// (shaftLossAt). The orders ≥ 2 are left as they are (the shadow's diffuse light is in V).
-uniform float uAerialMax;       // m, the aerial volume's reach
+// sky_shafts.comp.glsl tabulates ΔL per screen cell of SkyPass::kShaftCell × kShaftCell pixels
+// at the aerial volume's slice distances; the composite reads it at each pixel's distances
+// (cumulativeAt). The orders ≥ 2 are left as they are (the shadow's diffuse light is in V).
+// Needs sky_aerial_slices.glsl.
 uniform float uLaterAsymmetry;  // mean cosine of the clouds' later phase function (slabTransmittance)
 
-// Distance of the aerial volume's slice k, m: d_k = uAerialMax ((k + 1) / AERIAL_SLICES)².
-float aerialSliceDistance(int k) {
-  float f = float(k + 1) / float(AERIAL_SLICES);
-  return uAerialMax * f * f;
-}
+// V(x): the share of the sun's irradiance that reaches world point x through the clouds, direct
+// and scattered (slabTransmittance of the sun volume's optical depth toward the sun); it lights
+// the ground in the clouds' shadow and the air the light shafts take from.
+float cloudSunVisibility(vec3 x) { return slabTransmittance(sunOpticalDepth(x), uLaterAsymmetry); }
 
 // A quantity accumulated from the camera (S₁, ΔL) at distance t (m) along the ray through screen
 // point uv, from a volume that holds it at the aerial slices (depth AERIAL_SLICES): linear in t
 // between slices and from 0 at the camera to the first, as the in-scattering of a short piece
 // of air is; the last slice's value beyond it.
 vec3 cumulativeAt(sampler3D volume, vec2 uv, float t) {
-  float w = sqrt(clamp(t / uAerialMax, 0.0, 1.0)) * float(AERIAL_SLICES) - 1.0;  // slice coordinate
+  float w = aerialSliceCoordinate(t);
   int k = int(floor(w));
   if (k < 0)
     return texture(volume, vec3(uv, 0.5 / float(AERIAL_SLICES))).rgb * clamp(t / aerialSliceDistance(0), 0.0, 1.0);
