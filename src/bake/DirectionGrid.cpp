@@ -51,14 +51,16 @@ DirectionGrid::DirectionGrid(int thetaNodes, int phiNodes, double grading)
       const double qp = (b == 0 || b == nb_ - 1) ? 0.5 * dphi : dphi;
       weights_[a * nb_ + b] = 2.0 * qt[a] * qp;  // both mirror halves
     }
+  directions_.resize(static_cast<std::size_t>(count()));
+  for (int a = 0; a < na_; ++a)
+    for (int b = 0; b < nb_; ++b) {
+      const double t = theta_[a], p = phi(b);
+      directions_[static_cast<std::size_t>(a * nb_ + b)] = {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p),
+                                                            std::cos(t)};
+    }
 }
 
 double DirectionGrid::phi(int b) const { return kPi * b / (nb_ - 1); }
-
-glm::dvec3 DirectionGrid::direction(int a, int b) const {
-  const double t = theta_[a], p = phi(b);
-  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
-}
 
 void DirectionGrid::locateTheta(double theta, int& a, double& f) const {
   const double x = std::clamp(theta / kPi, 0.0, 1.0);

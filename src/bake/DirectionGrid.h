@@ -24,8 +24,9 @@ class DirectionGrid {
   int count() const { return na_ * nb_; }
   double theta(int a) const { return theta_[a]; }
   double phi(int b) const;
-  glm::dvec3 direction(int a, int b) const;
-  glm::dvec3 direction(int i) const { return direction(i / nb_, i % nb_); }
+  // The unit direction of node (a, b), (sin θ cos φ, sin θ sin φ, cos θ); of node i = a·nb + b.
+  const glm::dvec3& direction(int a, int b) const { return directions_[static_cast<std::size_t>(a * nb_ + b)]; }
+  const glm::dvec3& direction(int i) const { return directions_[static_cast<std::size_t>(i)]; }
 
   // Lower node and fraction along θ for a zenith angle in [0, π].
   void locateTheta(double theta, int& a, double& f) const;
@@ -45,6 +46,7 @@ class DirectionGrid {
   int na_ = 0, nb_ = 0;
   double p_ = 1.0;
   std::vector<double> theta_, weights_;
+  std::vector<glm::dvec3> directions_;  // every node's direction, computed once (the bake reads them per ray)
 };
 
 // Phase-function convolution on a grid: out[i] = Σ_j M[i·n + j] in[j] approximates

@@ -57,13 +57,11 @@ std::vector<float> firstScatteringSource(const SphereField& field, const Directi
   const int NS = field.nodeCount(), F = fine.count(), nt = field.zenithCount();
   const glm::dvec3 l(0, 0, 1);
   std::vector<float> A(static_cast<std::size_t>(NS) * F);  // in the field's layout with F directions
-  std::vector<glm::dvec3> backward(static_cast<std::size_t>(F));
-  for (int f = 0; f < F; ++f) backward[static_cast<std::size_t>(f)] = -fine.direction(f);
   tbb::parallel_for(0, NS, [&](int s) {
     const glm::dvec3 x = field.node(s);
     const std::size_t first = static_cast<std::size_t>(s / nt) * F * nt + static_cast<std::size_t>(s % nt);
     for (int f = 0; f < F; ++f) {
-      const glm::dvec3& back = backward[static_cast<std::size_t>(f)];
+      const glm::dvec3 back = -fine.direction(f);
       A[first + static_cast<std::size_t>(f) * nt] =
           static_cast<float>(sunlitRayIntegralFast(x, back, l, sigma, distanceToSphere(x, back)));
     }

@@ -45,14 +45,12 @@ TransportStencil::TransportStencil(const SphereField& field, double sigma, int p
   const int D = dirs.count(), nb = dirs.phiCount();
   entries_.reset(new Entry[field.size() * static_cast<std::size_t>(K_)]);
   counts_.assign(field.size(), 0);
-  std::vector<glm::dvec3> directions(static_cast<std::size_t>(D));
-  for (int d = 0; d < D; ++d) directions[static_cast<std::size_t>(d)] = dirs.direction(d);
   tbb::parallel_for(0, field.nodeCount(), [&](int s) {
     std::vector<double> ss, ww;
     const glm::dvec3 x = field.node(s);
     for (int d = 0; d < D; ++d) {
       const int ia = d / nb;
-      const glm::dvec3& w = directions[static_cast<std::size_t>(d)];
+      const glm::dvec3& w = dirs.direction(d);
       attenuatedRayRule(sigma, distanceToSphere(x, -w), points, ss, ww);
       const double wh = std::hypot(w.x, w.y);
       const std::size_t cell = field.index(s, d);

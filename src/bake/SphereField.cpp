@@ -28,8 +28,6 @@ double RadialAxis::qOfDepth(double d) const {
   return A_ > 1e-9 ? alpha_ * d + (1.0 - alpha_) * std::log1p(A_ * d) / logA_ : d;
 }
 
-double RadialAxis::q(double r) const { return qOfDepth(std::clamp(1.0 - r, 0.0, 1.0)); }
-
 void RadialAxis::cubic(float r, int& start, float w[4]) const {
   const float d = std::clamp(1.0f - r, 0.0f, 1.0f);
   const float q = A_ > 1e-9 ? static_cast<float>(alpha_) * d +

@@ -63,8 +63,6 @@ class RadialAxis {
  public:
   RadialAxis(int nodes, double A, double linearShare);
   double radius(int i) const { return radii_[static_cast<std::size_t>(i)]; }
-  // q(δ) at the radius r (clamped to [0, 1]).
-  double q(double r) const;
   // Four-node weights (cubicWeights) in q at the radius r (single precision).
   void cubic(float r, int& start, float w[4]) const;
 
