@@ -10,6 +10,7 @@
 #include "bake/Quadrature.h"
 #include "core/Glsl.h"
 #include "core/TableLookup.h"
+#include "cloudlut_quadrilinear.h"
 
 namespace cloudlut::bake {
 
@@ -43,6 +44,30 @@ EnergyInputs energyInputsFromParameters(const Table4D* single, const Table4D* mu
   in.firstPhase = recordedPhase(single ? single->parameters() : p, "first_phase", defaults::kFirstPhase);
   return in;
 }
+
+namespace {
+
+// A table's cell along its first three axes at the fractions x (locateCell), read on any
+// density slice through interpolateCell: what Table4D::sample computes, the three locations
+// shared by every slice.
+struct CellOnSlices {
+  std::uint32_t dims[4] = {0, 0, 0, 0}, i[4] = {0, 0, 0, 0};
+  float f[4] = {0, 0, 0, 0};
+  void sample(const Table4D& t, std::uint32_t slice, float fraction, float* out) {
+    i[3] = slice;
+    f[3] = fraction;
+    cloudlut_reader::interpolateCell(t.data().data(), dims, t.channels().size(), i, f, out);
+  }
+};
+
+CellOnSlices locateOnSlices(const Table4D& t, const glm::vec4& x) {
+  CellOnSlices c;
+  for (int a = 0; a < 4; ++a) c.dims[a] = static_cast<std::uint32_t>(t.axes()[a].size);
+  for (int a = 0; a < 3; ++a) cloudlut_reader::locateCell(x[a], c.dims[a], c.i[a], c.f[a]);
+  return c;
+}
+
+}  // namespace
 
 EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multiple,
                                    const EnergyInputs& in) {
@@ -86,6 +111,10 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
     wFracs[k] = nSlices > 1 ? static_cast<float>(k) / static_cast<float>(nSlices - 1) : 0.0f;
   }
   const std::size_t nK = static_cast<std::size_t>(nSlices);
+  std::vector<std::uint32_t> sliceCells(nK);
+  std::vector<float> sliceFracs(nK);
+  for (std::size_t k = 0; k < nK; ++k)
+    cloudlut_reader::locateCell(wFracs[k], static_cast<std::uint32_t>(nSlices), sliceCells[k], sliceFracs[k]);
   std::vector<double> p1(thS.size() * nK, 0.0), pm(thS.size() * nK, 0.0);  // [i·nK + k]
   tbb::parallel_for(std::size_t(0), thS.size(), [&](std::size_t i) {
     const glm::vec3 S(static_cast<float>(std::sin(thS[i])), 0.0f, static_cast<float>(std::cos(thS[i])));
@@ -103,16 +132,22 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
         const float cosV = -glm::dot(v, S);
         if (!(cosV > 0.0f)) continue;
         const glm::vec4 x1 = single ? glsl::scatteringAxes(S, v, l, 1.0f, axes1, 2.0f) : glm::vec4(0.0f);
-        const glm::vec4 xm = multiple ? glsl::scatteringAxes(S, v, l, 1.0f, axesM, 2.0f) : glm::vec4(0.0f);
+        const glm::vec4 xm = multiple ? (single && axesM == axes1 ? x1 : glsl::scatteringAxes(S, v, l, 1.0f, axesM, 2.0f))
+                                      : glm::vec4(0.0f);
+        // Table4D::sample at (x, slice k), its cell located once for every slice: the same
+        // locateCell and interpolateCell calls, so the same values.
+        CellOnSlices c1, cm;
+        if (single) c1 = locateOnSlices(*single, x1);
+        if (multiple) cm = locateOnSlices(*multiple, xm);
         for (std::size_t k = 0; k < nK; ++k) {
           const float tau = static_cast<float>(sigmas[k]) * 2.0f * cosV;
           float val = 0.0f;
           if (single) {
-            single->sample({x1.x, x1.y, x1.z, wFracs[k]}, &val);
+            c1.sample(*single, sliceCells[k], sliceFracs[k], &val);
             b1[k] += static_cast<double>(scatteringFromStored(storage1, val, tau)) * cosV;
           }
           if (multiple) {
-            multiple->sample({xm.x, xm.y, xm.z, wFracs[k]}, &val);
+            cm.sample(*multiple, sliceCells[k], sliceFracs[k], &val);
             bm[k] += static_cast<double>(scatteringFromStored(storageM, val, tau)) * cosV;
           }
         }
