@@ -24,6 +24,7 @@ struct FastMultipleScattering::Shared {
   DirectionGrid coarse, fine;  // J_2's directions (D) and the once-scattered light's (F)
   std::vector<float> Mt;   // D × D: Mt[j·D + i] = M[i][j], the later phase matrix
   std::vector<float> M2t;  // F × D: M2t[f·D + i] = M2[i][f], the second scattering of sunlight
+  mutable TransportStencil::Storage stencils;  // reused by the density slices (thread-safe)
 };
 
 namespace {
@@ -187,7 +188,7 @@ void FastMultipleScattering::bakeSlice(double sigma, int slice, Table4D& table, 
   // K = M·T, its transport stencil built once for every order of this density.
   const auto t1 = std::chrono::steady_clock::now();
   const TransportStencil transport(later, sigma,
-                                   sigma >= kFarPanelMaxSigma ? res.denseTransportPoints : res.transportPoints);
+                                   sigma >= kFarPanelMaxSigma ? res.denseTransportPoints : res.transportPoints, sh.stencils);
   ScatteringOperator K(transport, sh.Mt, later);
   const double tStencil = seconds(t1);
   say(0.2);

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/Defaults.h"
+#include "core/Float4.h"
 #include "core/Glsl.h"
 
 namespace cloudlut::bake {
@@ -19,19 +20,6 @@ namespace {
 constexpr float kGaussLo = 0.2113248654f;
 constexpr float kGaussHi = 0.7886751346f;
 constexpr int kBisections = 4;
-
-// First crossing of the matter threshold between t0 (density d0 below it) and t1 (d1 at or
-// above it): a few bisections, then the linear interpolation of the last bracket.
-float refineCrossing(const ReferenceParticle& particle, const glm::vec3& S, const glm::vec3& v,
-                     float t0, float d0, float t1, float d1, float threshold) {
-  for (int i = 0; i < kBisections; ++i) {
-    const float tm = 0.5f * (t0 + t1);
-    const float dm = particle.density(S + tm * v);
-    if (dm >= threshold) { t1 = tm; d1 = dm; } else { t0 = tm; d0 = dm; }
-  }
-  const float w = d1 > d0 ? (threshold - d0) / (d1 - d0) : 0.5f;
-  return t0 + std::clamp(w, 0.0f, 1.0f) * (t1 - t0);
-}
 
 }  // namespace
 
@@ -46,33 +34,86 @@ int defaultSteps(DensityModel model) {
   return 32;
 }
 
-ChordIntegral integrateChord(const ReferenceParticle& particle, const glm::vec3& S,
-                             const glm::vec3& v, int steps) {
-  const float threshold = defaults::kFirstMatterThreshold;
-  const float L = glsl::chordLength(S, v);
-  // Points exactly on the sphere may round to just outside it: pull S in by a hair.
-  const glm::vec3 s = S * (1.0f - 1e-6f);
-  const float atS = particle.density(s);
-  if (L < 1e-6f) return {atS, atS >= threshold ? 0.0f : 1.0f};
+ChordIntegral integrateChord(const ReferenceParticle& particle, const glm::vec3& S, const glm::vec3& v, int steps) {
+  const glm::vec3 lanesS[4] = {S, S, S, S}, lanesV[4] = {v, v, v, v};
+  ChordIntegral out[4];
+  integrateChords4(particle, lanesS, lanesV, steps, out);
+  return out[0];
+}
 
-  const int panels = std::max(1, static_cast<int>(std::ceil(0.25f * static_cast<float>(steps) * L)));
-  const float h = L / static_cast<float>(panels);
-  double sum = 0.0;
-  float first = atS >= threshold ? 0.0f : -1.0f;
-  float tPrev = 0.0f, dPrev = atS;
-  for (int p = 0; p < panels; ++p) {
-    const float a = h * static_cast<float>(p);
-    const float ts[2] = {a + kGaussLo * h, a + kGaussHi * h};
-    for (float t : ts) {
-      const float d = particle.density(s + t * v);
-      sum += d;
-      if (first < 0.0f && d >= threshold) first = refineCrossing(particle, s, v, tPrev, dPrev, t, d, threshold) / L;
-      tPrev = t;
-      dPrev = d;
+void integrateChords4(const ReferenceParticle& particle, const glm::vec3 S[4], const glm::vec3 v[4], int steps,
+                      ChordIntegral out[4]) {
+  // Four chords side by side, each lane on its own panels (a lane past its last panel idles).
+  const float threshold = defaults::kFirstMatterThreshold;
+  Float4 sx, sy, sz, vx, vy, vz, L, h;
+  int panels[4];
+  int maxPanels = 0;
+  for (int k = 0; k < 4; ++k) {
+    // Points exactly on the sphere may round to just outside it: pull S in by a hair.
+    const glm::vec3 s = S[k] * (1.0f - 1e-6f);
+    sx[k] = s.x, sy[k] = s.y, sz[k] = s.z;
+    vx[k] = v[k].x, vy[k] = v[k].y, vz[k] = v[k].z;
+    L[k] = glsl::chordLength(S[k], v[k]);
+    // a degenerate (grazing) chord has no panels: it takes its limits at S
+    panels[k] = L[k] < 1e-6f ? 0 : std::max(1, static_cast<int>(std::ceil(0.25f * static_cast<float>(steps) * L[k])));
+    h[k] = panels[k] > 0 ? L[k] / static_cast<float>(panels[k]) : 0.0f;
+    maxPanels = std::max(maxPanels, panels[k]);
+  }
+  const Float4 atS = particle.density4(sx, sy, sz);
+  double sum[4] = {0.0, 0.0, 0.0, 0.0};
+  // The first matter: found at S, or bracketed between two samples (t0, d0 below the
+  // threshold; t1, d1 at or above it) and refined below.
+  bool atStart[4], bracketed[4] = {false, false, false, false};
+  Float4 t0 = {0, 0, 0, 0}, d0 = atS, t1 = {0, 0, 0, 0}, d1 = atS;
+  for (int k = 0; k < 4; ++k) atStart[k] = atS[k] >= threshold;
+  for (int p = 0; p < maxPanels; ++p) {
+    const Float4 a = h * static_cast<float>(p);
+    for (const float g : {kGaussLo, kGaussHi}) {
+      const Float4 t = a + g * h;
+      const Float4 d = particle.density4(sx + t * vx, sy + t * vy, sz + t * vz);
+      for (int k = 0; k < 4; ++k) {
+        if (p >= panels[k]) continue;
+        sum[k] += d[k];
+        if (atStart[k] || bracketed[k]) continue;
+        if (d[k] >= threshold) {
+          bracketed[k] = true;
+          t1[k] = t[k];
+          d1[k] = d[k];
+        } else {
+          t0[k] = t[k];
+          d0[k] = d[k];
+        }
+      }
     }
   }
-  const float mean = static_cast<float>(sum / (2.0 * panels));
-  return {std::clamp(mean, 0.0f, 1.0f), first < 0.0f ? 1.0f : std::clamp(first, 0.0f, 1.0f)};
+  // A few bisections of every bracket (four lanes at once), then the linear interpolation of
+  // the last one.
+  if (bracketed[0] || bracketed[1] || bracketed[2] || bracketed[3]) {
+    for (int i = 0; i < kBisections; ++i) {
+      const Float4 tm = 0.5f * (t0 + t1);
+      const Float4 dm = particle.density4(sx + tm * vx, sy + tm * vy, sz + tm * vz);
+      const Int4 above = dm >= threshold;
+      t1 = above ? tm : t1;
+      d1 = above ? dm : d1;
+      t0 = above ? t0 : tm;
+      d0 = above ? d0 : dm;
+    }
+  }
+  for (int k = 0; k < 4; ++k) {
+    if (panels[k] == 0) {
+      out[k] = {atS[k], atStart[k] ? 0.0f : 1.0f};
+      continue;
+    }
+    float first = 1.0f;  // never reaches the threshold
+    if (atStart[k]) {
+      first = 0.0f;
+    } else if (bracketed[k]) {
+      const float w = d1[k] > d0[k] ? (threshold - d0[k]) / (d1[k] - d0[k]) : 0.5f;
+      first = std::clamp((t0[k] + std::clamp(w, 0.0f, 1.0f) * (t1[k] - t0[k])) / L[k], 0.0f, 1.0f);
+    }
+    const float mean = static_cast<float>(sum[k] / (2.0 * panels[k]));
+    out[k] = {std::clamp(mean, 0.0f, 1.0f), first};
+  }
 }
 
 std::array<Axis, 4> opticalDepthAxes(const std::array<int, 4>& d) {
@@ -114,13 +155,21 @@ Table4D bakeOpticalDepth(const ReferenceParticle& particle, const OpticalDepthSe
       const int i2 = slice % d[2], i3 = slice / d[2];
       const float phiV = static_cast<float>(axes[2].value(i2)), thetaV = static_cast<float>(axes[3].value(i3));
       for (int i1 = 0; i1 < d[1]; ++i1)
-        for (int i0 = 0; i0 < d[0]; ++i0) {
-          const Frame& f = frames[i1 * d[0] + i0];
-          const glm::vec3 v = glsl::frameDirection(f.x, f.y, f.S, phiV, thetaV);
-          const ChordIntegral c = integrateChord(particle, f.S, v, steps);
-          const std::size_t node = table.index(i0, i1, i2, i3);
-          table.at(node, 0) = c.meanDensity;
-          table.at(node, 1) = c.firstMatter;
+        for (int i0 = 0; i0 < d[0]; i0 += 4) {  // four entry points at a time
+          const int n = std::min(4, d[0] - i0);
+          glm::vec3 S[4], v[4];
+          for (int k = 0; k < 4; ++k) {
+            const Frame& f = frames[i1 * d[0] + i0 + std::min(k, n - 1)];
+            S[k] = f.S;
+            v[k] = glsl::frameDirection(f.x, f.y, f.S, phiV, thetaV);
+          }
+          ChordIntegral c[4];
+          integrateChords4(particle, S, v, steps, c);
+          for (int k = 0; k < n; ++k) {
+            const std::size_t node = table.index(i0 + k, i1, i2, i3);
+            table.at(node, 0) = c[k].meanDensity;
+            table.at(node, 1) = c[k].firstMatter;
+          }
         }
       const int n = ++done;
       if (progress && (n % 16 == 0 || n == slices))

@@ -42,6 +42,10 @@ int defaultSteps(DensityModel model);
 ChordIntegral integrateChord(const ReferenceParticle& particle, const glm::vec3& S,
                              const glm::vec3& v, int steps);
 
+// integrateChord for four chords at once (S[k], v[k]), each lane bit for bit the same.
+void integrateChords4(const ReferenceParticle& particle, const glm::vec3 S[4], const glm::vec3 v[4], int steps,
+                      ChordIntegral out[4]);
+
 // The table's axes for the given dimensions: φS ∈ [0, 2π], θS ∈ [0, π], φv ∈ [0, 2π], θv ∈ [0, π/2].
 std::array<Axis, 4> opticalDepthAxes(const std::array<int, 4>& dims);
 

@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "bake/Float4.h"
+#include "core/Float4.h"
 
 namespace cloudlut::bake {
 

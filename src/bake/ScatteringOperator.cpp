@@ -36,14 +36,15 @@ void convolvePhase(const std::vector<float>& in, int inDirs, const std::vector<f
       tbb::simple_partitioner());
 }
 
-TransportStencil::TransportStencil(const SphereField& field, double sigma, int points) : field_(&field) {
+TransportStencil::TransportStencil(const SphereField& field, double sigma, int points, Storage& storage)
+    : field_(&field) {
   // Points per ray: the rule's panels may round the total up (at least 2 points each).
   std::vector<double> probeS, probeW;
   attenuatedRayRule(sigma, 2.0, points, probeS, probeW);
   K_ = static_cast<int>(probeS.size());
   const DirectionGrid& dirs = field.directions();
   const int D = dirs.count(), nb = dirs.phiCount();
-  entries_.reset(new Entry[field.size() * static_cast<std::size_t>(K_)]);
+  entries_ = storage.acquire(field.size() * static_cast<std::size_t>(K_));
   counts_.assign(field.size(), 0);
   tbb::parallel_for(0, field.nodeCount(), [&](int s) {
     std::vector<double> ss, ww;
@@ -54,14 +55,20 @@ TransportStencil::TransportStencil(const SphereField& field, double sigma, int p
       attenuatedRayRule(sigma, distanceToSphere(x, -w), points, ss, ww);
       const double wh = std::hypot(w.x, w.y);
       const std::size_t cell = field.index(s, d);
-      Entry* e = &entries_[cell * K_];
+      Entry* e = &entries_.data()[cell * K_];
       // Points of zero weight (the far panel of a ray shorter than its near optical depth)
       // contribute exactly nothing: they are left out, the rest packed at the cell's start.
-      int used = 0;
-      for (int k = 0; k < K_; ++k) {
-        if (!(ww[k] != 0.0)) continue;
-        const FieldPoint p = field.locate(x - ss[k] * w, w, wh);
-        Entry& q = e[used++];
+      int nonzero = 0;
+      for (int k = 0; k < K_; ++k)
+        if (ww[k] != 0.0) {
+          ss[nonzero] = ss[k];
+          ww[nonzero++] = ww[k];
+        }
+      FieldPoint located[4];
+      for (int k = 0; k < nonzero; ++k) {
+        if (k % 4 == 0) field.locateRay(x, w, wh, &ss[k], std::min(4, nonzero - k), located);
+        const FieldPoint& p = located[k % 4];
+        Entry& q = e[k];
         q.base = static_cast<std::uint32_t>(p.offset + static_cast<std::size_t>(ia) * nb * field.directionStride());
         for (int c = 0; c < 4; ++c) {
           q.wr[c] = static_cast<float>(ww[k]) * p.wr[c];
@@ -69,7 +76,7 @@ TransportStencil::TransportStencil(const SphereField& field, double sigma, int p
         }
         q.fb = p.fb;
       }
-      counts_[cell] = static_cast<std::uint8_t>(used);
+      counts_[cell] = static_cast<std::uint8_t>(nonzero);
     }
   });
 }
@@ -81,7 +88,7 @@ void TransportStencil::apply(const std::vector<float>& in, std::vector<float>& o
   const float* src = in.data();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, field_->size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t cell = r.begin(); cell != r.end(); ++cell) {
-      const Entry* e = &entries_[cell * K_];
+      const Entry* e = &entries_.data()[cell * K_];
       Float4 acc = {0.0f, 0.0f, 0.0f, 0.0f};
       for (int k = 0, n = counts_[cell]; k < n; ++k)
         acc += interpolateFieldTerms(src + e[k].base, strideR, strideB, e[k].wr, e[k].wt, e[k].fb);
@@ -100,7 +107,7 @@ std::vector<double> TransportStencil::isotropicCoarseOperator() const {
     double* row = &Kc[static_cast<std::size_t>(sIdx) * NS];
     for (int dd = 0; dd < D; ++dd) {
       const std::size_t cell = field_->index(sIdx, dd);
-      const Entry* e = &entries_[cell * K_];
+      const Entry* e = &entries_.data()[cell * K_];
       const double qd = q[dd] * inv4pi;
       for (int k = 0, n = counts_[cell]; k < n; ++k) {
         const std::size_t base = e[k].base;

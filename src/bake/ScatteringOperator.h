@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "bake/RecycledArrays.h"
 #include "bake/SphereField.h"
 
 namespace cloudlut::bake {
@@ -23,9 +24,19 @@ void convolvePhase(const std::vector<float>& in, int inDirs, const std::vector<f
 
 class TransportStencil {
  public:
+  // One quadrature point of a ray: where it reads the field and with which weights.
+  struct Entry {
+    std::uint32_t base;  // node (radial start, zenith start, direction zenith, azimuth)
+    float wr[4];         // radial weights × quadrature weight
+    float wt[4];         // position-zenith weights
+    float fb;            // azimuth fraction
+  };
+  // Where stencils keep their entries between density slices (about 10⁸ bytes each).
+  using Storage = RecycledArrays<Entry>;
+
   // The stencil of T for optical radius σ with `points` quadrature points per ray (the rule
-  // may round up).
-  TransportStencil(const SphereField& field, double sigma, int points);
+  // may round up), its entries leased from `storage`, which must outlive it.
+  TransportStencil(const SphereField& field, double sigma, int points, Storage& storage);
 
   // out = T·in (fields of field.size() values).
   void apply(const std::vector<float>& in, std::vector<float>& out) const;
@@ -36,17 +47,11 @@ class TransportStencil {
   std::vector<double> isotropicCoarseOperator() const;
 
  private:
-  struct Entry {
-    std::uint32_t base;  // node (radial start, zenith start, direction zenith, azimuth)
-    float wr[4];         // radial weights × quadrature weight
-    float wt[4];         // position-zenith weights
-    float fb;            // azimuth fraction
-  };
   const SphereField* field_;
   int K_ = 0;
-  // K per (node, direction) in the field's order; left uninitialised (no 10⁸-byte clearing per
-  // density): only the first counts_[cell] of a cell are written and read.
-  std::unique_ptr<Entry[]> entries_;
+  // K per (node, direction) in the field's order; not cleared (an earlier slice's values may
+  // be there): only the first counts_[cell] of a cell are written and read.
+  Storage::Lease entries_;
   std::vector<std::uint8_t> counts_;  // points of nonzero weight per cell (packed first)
 };
 

@@ -28,12 +28,14 @@ double RadialAxis::qOfDepth(double d) const {
   return A_ > 1e-9 ? alpha_ * d + (1.0 - alpha_) * std::log1p(A_ * d) / logA_ : d;
 }
 
-void RadialAxis::cubic(float r, int& start, float w[4]) const {
-  const float d = std::clamp(1.0f - r, 0.0f, 1.0f);
-  const float q = A_ > 1e-9 ? static_cast<float>(alpha_) * d +
-                                  static_cast<float>((1.0 - alpha_) / logA_) * std::log(1.0f + static_cast<float>(A_) * d)
-                            : d;
-  cubicWeights(q * static_cast<float>(n_ - 1), n_, start, w);
+Float4 RadialAxis::coordinates(Float4 r) const {
+  Float4 d = 1.0f - r;
+  d = d < 0.0f ? Float4{0, 0, 0, 0} : d;
+  d = d > 1.0f ? Float4{1, 1, 1, 1} : d;
+  const Float4 q = A_ > 1e-9 ? static_cast<float>(alpha_) * d +
+                                   static_cast<float>((1.0 - alpha_) / logA_) * logFloat4(1.0f + static_cast<float>(A_) * d)
+                             : d;
+  return q * static_cast<float>(n_ - 1);
 }
 
 SphereField::SphereField(int nr, int nt, double grading, double linearShare, double sigma,
@@ -48,25 +50,45 @@ SphereField::SphereField(int nr, int nt, double grading, double linearShare, dou
 }
 
 FieldPoint SphereField::locate(const glm::dvec3& y, const glm::dvec3& w, double wh) const {
-  // Angles and the depth coordinate in single precision (float atan2 and log1p cost about half
-  // of double; a node coordinate off by 1e-6 of a cell moves nothing that matters).
+  const double zero = 0.0;
   FieldPoint p;
-  const double rho2 = y.x * y.x + y.y * y.y;
-  const float rho = static_cast<float>(std::sqrt(rho2));
-  const float r = static_cast<float>(std::sqrt(rho2 + y.z * y.z));
-  int ir, it, ib;
-  radial_.cubic(r, ir, p.wr);
-  cubicWeights(std::atan2(rho, static_cast<float>(y.z)) * static_cast<float>((nt_ - 1) / kPi), nt_, it, p.wt);
-  // Relative azimuth of the direction about l, folded to [0, π].
-  float phi = 0.0f;
-  if (rho > 1e-12f && wh > 1e-12)
-    phi = std::abs(std::atan2(static_cast<float>(w.y * y.x - w.x * y.y), static_cast<float>(w.x * y.x + w.y * y.y)));
-  double fb;
-  directions_->locatePhi(phi, ib, fb);
-  p.fb = static_cast<float>(fb);
-  p.offset = static_cast<std::size_t>(ir) * radialStride() + static_cast<std::size_t>(ib) * directionStride() +
-             static_cast<std::size_t>(it);
+  locateRay(y, w, wh, &zero, 1, &p);
   return p;
+}
+
+void SphereField::locateRay(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
+                            FieldPoint* out) const {
+  // The points in double, their angles and depth coordinates in single precision, four lanes
+  // at once (a node coordinate off by 1e-6 of a cell moves nothing that matters); unused
+  // lanes repeat the last point.
+  Float4 rho, z, r, num, den;
+  for (int k = 0; k < 4; ++k) {
+    const double sk = s[std::min(k, n - 1)];
+    const glm::dvec3 y = x - sk * w;
+    const double rho2 = y.x * y.x + y.y * y.y;
+    rho[k] = static_cast<float>(std::sqrt(rho2));
+    r[k] = static_cast<float>(std::sqrt(rho2 + y.z * y.z));
+    z[k] = static_cast<float>(y.z);
+    // the relative azimuth of the direction about l: atan2(w × y · l, w_h · y_h)
+    num[k] = static_cast<float>(w.y * y.x - w.x * y.y);
+    den[k] = static_cast<float>(w.x * y.x + w.y * y.y);
+  }
+  const Float4 qr = radial_.coordinates(r);
+  const Float4 qt = atan2Float4(rho, z) * static_cast<float>((nt_ - 1) / kPi);
+  const Float4 phi = atan2Float4(num, den);
+  for (int k = 0; k < n; ++k) {
+    FieldPoint& p = out[k];
+    int ir, it, ib;
+    cubicWeights(qr[k], nr_, ir, p.wr);
+    cubicWeights(qt[k], nt_, it, p.wt);
+    // folded to [0, π]; 0 on the axis or for a direction along l
+    const float phik = rho[k] > 1e-12f && wh > 1e-12 ? std::abs(phi[k]) : 0.0f;
+    double fb;
+    directions_->locatePhi(phik, ib, fb);
+    p.fb = static_cast<float>(fb);
+    p.offset = static_cast<std::size_t>(ir) * radialStride() + static_cast<std::size_t>(ib) * directionStride() +
+               static_cast<std::size_t>(it);
+  }
 }
 
 }  // namespace cloudlut::bake

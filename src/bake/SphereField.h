@@ -19,7 +19,7 @@
 #include <glm/vec3.hpp>
 
 #include "bake/DirectionGrid.h"
-#include "bake/Float4.h"
+#include "core/Float4.h"
 
 namespace cloudlut::bake {
 
@@ -63,8 +63,8 @@ class RadialAxis {
  public:
   RadialAxis(int nodes, double A, double linearShare);
   double radius(int i) const { return radii_[static_cast<std::size_t>(i)]; }
-  // Four-node weights (cubicWeights) in q at the radius r (single precision).
-  void cubic(float r, int& start, float w[4]) const;
+  // The continuous node coordinate q(1 − r)·(n − 1) at four radii r ∈ [0, 1] (single precision).
+  Float4 coordinates(Float4 r) const;
 
  private:
   double qOfDepth(double d) const;
@@ -126,6 +126,8 @@ class SphereField {
   // along a ray). Its offset excludes the direction zenith: add a·nb·directionStride() for
   // zenith node a.
   FieldPoint locate(const glm::dvec3& y, const glm::dvec3& w, double wh) const;
+  // locate at the n ≤ 4 points x − s[k]·w of one ray (their angles and depths four at a time).
+  void locateRay(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n, FieldPoint* out) const;
 
  private:
   int nr_, nt_;

@@ -1,6 +1,8 @@
-#include "bake/Float4.h"
+#include "core/Float4.h"
 
-namespace cloudlut::bake {
+#include <initializer_list>
+
+namespace cloudlut {
 
 namespace {
 // ln 2 = kLn2Hi + kLn2Lo, kLn2Hi with few mantissa bits (n · kLn2Hi exact for |n| < 2^9).
@@ -8,6 +10,14 @@ constexpr float kLn2Hi = 0.693359375f, kLn2Lo = -2.12194440e-4f;
 constexpr float kLog2e = 1.44269504088896341f;
 
 Float4 splat(float v) { return Float4{v, v, v, v}; }
+
+// c[0]·x^(n−1) + … + c[n−1] by Horner's rule, per lane.
+Float4 horner(Float4 x, std::initializer_list<float> c) {
+  const float* k = c.begin();
+  Float4 p = splat(*k);
+  for (++k; k != c.end(); ++k) p = p * x + *k;
+  return p;
+}
 
 Float4 fromBits(Int4 b) {
   Float4 f;
@@ -30,12 +40,8 @@ Float4 expFloat4(Float4 x) {
   n = n > fx ? n - 1.0f : n;
   const Float4 r = (x - n * kLn2Hi) - n * kLn2Lo;
   // e^r = 1 + r + r² Q(r), Q by minimax on |r| ≤ ln 2 / 2
-  Float4 q = splat(1.9875691500e-4f);
-  q = q * r + 1.3981999507e-3f;
-  q = q * r + 8.3334519073e-3f;
-  q = q * r + 4.1665795894e-2f;
-  q = q * r + 1.6666665459e-1f;
-  q = q * r + 5.0000001201e-1f;
+  const Float4 q = horner(r, {1.9875691500e-4f, 1.3981999507e-3f, 8.3334519073e-3f, 4.1665795894e-2f,
+                              1.6666665459e-1f, 5.0000001201e-1f});
   const Float4 er = (q * (r * r) + r) + 1.0f;
   const Int4 scale = (__builtin_convertvector(n, Int4) + 127) << 23;  // 2^n
   const Float4 y = er * fromBits(scale);
@@ -49,19 +55,27 @@ Float4 logFloat4(Float4 x) {
   const Int4 low = m < 0.70710678118654752f;            // m < √½: use 2m, e − 1
   e = low ? e - 1 : e;
   const Float4 z = low ? (m + m) - 1.0f : m - 1.0f;     // z ∈ [√½ − 1, √2 − 1)
-  Float4 p = splat(7.0376836292e-2f);
-  p = p * z - 1.1514610310e-1f;
-  p = p * z + 1.1676998740e-1f;
-  p = p * z - 1.2420140846e-1f;
-  p = p * z + 1.4249322787e-1f;
-  p = p * z - 1.6668057665e-1f;
-  p = p * z + 2.0000714765e-1f;
-  p = p * z - 2.4999993993e-1f;
-  p = p * z + 3.3333331174e-1f;
+  const Float4 p = horner(z, {7.0376836292e-2f, -1.1514610310e-1f, 1.1676998740e-1f, -1.2420140846e-1f,
+                              1.4249322787e-1f, -1.6668057665e-1f, 2.0000714765e-1f, -2.4999993993e-1f,
+                              3.3333331174e-1f});
   const Float4 z2 = z * z, fe = __builtin_convertvector(e, Float4);
   Float4 y = z * z2 * p + fe * kLn2Lo;
   y = y - 0.5f * z2;
   return (z + y) + fe * kLn2Hi;
 }
 
-}  // namespace cloudlut::bake
+Float4 atan2Float4(Float4 y, Float4 x) {
+  const Float4 ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
+  const Int4 steep = ay > ax;
+  const Float4 hi = steep ? ay : ax, lo = steep ? ax : ay;
+  const Float4 a = lo / (hi > 0.0f ? hi : splat(1.0f));
+  const Float4 u = a * a;
+  const Float4 p = horner(u, {2.8498894535e-3f, -1.6068628058e-2f, 4.2691517621e-2f, -7.5042940676e-2f,
+                              1.0640934110e-1f, -1.4203643799e-1f, 1.9992619753e-1f, -3.3333072066e-1f, 1.0f});
+  Float4 r = a * p;
+  r = steep ? 1.57079632679489662f - r : r;
+  r = x < 0.0f ? 3.14159265358979324f - r : r;
+  return y < 0.0f ? -r : r;
+}
+
+}  // namespace cloudlut

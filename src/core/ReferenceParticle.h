@@ -20,6 +20,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/Float4.h"
+
 namespace cloudlut {
 
 enum class DensityModel { Noise, Threshold, Pyroclastic, Radial, Sphere };
@@ -48,8 +50,23 @@ class ReferenceParticle {
     switch (model_) {
       case DensityModel::Sphere: return 1.0f;
       case DensityModel::Radial: return radialFalloff(r2);
-      default: return gridDensity(p);
+      default: return gridDensity<float, int>(p.x, p.y, p.z);
     }
+  }
+
+  // ρ̂ at four points (x, y, z per lane): density() lane by lane, bit for bit (the same
+  // arithmetic in the same order, four lanes per instruction).
+  Float4 density4(Float4 x, Float4 y, Float4 z) const {
+    const Float4 r2 = x * x + y * y + z * z;
+    Float4 d;
+    switch (model_) {
+      case DensityModel::Sphere: d = Float4{1.0f, 1.0f, 1.0f, 1.0f}; break;
+      case DensityModel::Radial:
+        for (int k = 0; k < 4; ++k) d[k] = radialFalloff(r2[k]);
+        break;
+      default: d = gridDensity<Float4, Int4>(x, y, z);
+    }
+    return r2 > 1.0f ? Float4{0.0f, 0.0f, 0.0f, 0.0f} : d;
   }
 
   // The metaball fall-off (1 - r²)², r² = |p|² (dimensionless).
@@ -59,23 +76,37 @@ class ReferenceParticle {
   }
 
  private:
-  float gridDensity(const glm::vec3& p) const {
+  // The trilinear interpolation of the grid at (x, y, z) ∈ [−1, 1]³, for one point (V float,
+  // I int) or four (V Float4, I Int4); the lane helpers below differ only in how they
+  // convert, clamp and fetch.
+  static int truncate(float v) { return static_cast<int>(v); }
+  static Int4 truncate(Float4 v) { return __builtin_convertvector(v, Int4); }
+  static float toFloat(int v) { return static_cast<float>(v); }
+  static Float4 toFloat(Int4 v) { return __builtin_convertvector(v, Float4); }
+  static int clampIndex(int i, int last) { return i < 0 ? 0 : (i > last ? last : i); }
+  static Int4 clampIndex(Int4 i, int last) {
+    const Int4 lo = {0, 0, 0, 0}, hi = {last, last, last, last};
+    i = i < 0 ? lo : i;
+    return i > last ? hi : i;
+  }
+  static float fetch(const float* c, int o) { return c[o]; }
+  static Float4 fetch(const float* c, Int4 o) { return Float4{c[o[0]], c[o[1]], c[o[2]], c[o[3]]}; }
+
+  template <class V, class I>
+  V gridDensity(V x, V y, V z) const {
     const float s = 0.5f * static_cast<float>(res_ - 1);
-    const float gx = (p.x + 1.0f) * s, gy = (p.y + 1.0f) * s, gz = (p.z + 1.0f) * s;
+    const V gx = (x + 1.0f) * s, gy = (y + 1.0f) * s, gz = (z + 1.0f) * s;
     const int last = res_ - 2;
-    int ix = static_cast<int>(gx), iy = static_cast<int>(gy), iz = static_cast<int>(gz);
-    ix = ix < 0 ? 0 : (ix > last ? last : ix);
-    iy = iy < 0 ? 0 : (iy > last ? last : iy);
-    iz = iz < 0 ? 0 : (iz > last ? last : iz);
-    const float fx = gx - static_cast<float>(ix), fy = gy - static_cast<float>(iy),
-                fz = gz - static_cast<float>(iz);
-    const std::size_t sy = static_cast<std::size_t>(res_), sz = sy * sy;
-    const float* c = grid_.data() + (iz * sz + iy * sy + ix);
-    const float c00 = c[0] + fx * (c[1] - c[0]);
-    const float c10 = c[sy] + fx * (c[sy + 1] - c[sy]);
-    const float c01 = c[sz] + fx * (c[sz + 1] - c[sz]);
-    const float c11 = c[sz + sy] + fx * (c[sz + sy + 1] - c[sz + sy]);
-    const float c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
+    const I ix = clampIndex(truncate(gx), last), iy = clampIndex(truncate(gy), last), iz = clampIndex(truncate(gz), last);
+    const V fx = gx - toFloat(ix), fy = gy - toFloat(iy), fz = gz - toFloat(iz);
+    const int sy = res_, sz = res_ * res_;  // at most 1024³ nodes: offsets fit an int
+    const I o = iz * sz + iy * sy + ix;
+    const float* c = grid_.data();
+    const V c00 = fetch(c, o) + fx * (fetch(c + 1, o) - fetch(c, o));
+    const V c10 = fetch(c + sy, o) + fx * (fetch(c + sy + 1, o) - fetch(c + sy, o));
+    const V c01 = fetch(c + sz, o) + fx * (fetch(c + sz + 1, o) - fetch(c + sz, o));
+    const V c11 = fetch(c + sz + sy, o) + fx * (fetch(c + sz + sy + 1, o) - fetch(c + sz + sy, o));
+    const V c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
     return c0 + fz * (c1 - c0);
   }
 

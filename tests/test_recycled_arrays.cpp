@@ -1,0 +1,61 @@
+// RecycledArrays (bake/RecycledArrays.h): an array given back is handed out again (so its pages
+// are mapped once per bake), the smallest that fits first, and a lease that moves gives back once.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <thread>
+#include <vector>
+
+#include "bake/RecycledArrays.h"
+
+using cloudlut::bake::RecycledArrays;
+
+TEST_CASE("recycled arrays: returned arrays are reused, the smallest that fits first", "[bake][pool]") {
+  RecycledArrays<float> pool;
+  const float* big = nullptr;
+  const float* small = nullptr;
+  {
+    auto a = pool.acquire(1000);
+    auto b = pool.acquire(100);
+    big = a.data();
+    small = b.data();
+    CHECK(a.size() == 1000);
+    CHECK(b.size() == 100);
+  }
+  {
+    auto c = pool.acquire(50);  // both fit: the smaller one
+    CHECK(c.data() == small);
+    CHECK(c.size() == 100);
+    auto d = pool.acquire(500);  // only the larger fits
+    CHECK(d.data() == big);
+    auto e = pool.acquire(2000);  // none fits: a new one
+    CHECK(e.data() != big);
+    CHECK(e.data() != small);
+    CHECK(e.size() == 2000);
+    auto moved = std::move(d);  // a moved lease gives its array back once, when the new owner ends
+    CHECK(d.data() == nullptr);
+    CHECK(moved.data() == big);
+  }
+  // All three are free again: two requests of 1000 get the 1000 and the 2000 arrays.
+  auto f = pool.acquire(1000);
+  auto g = pool.acquire(1000);
+  CHECK(f.data() == big);
+  CHECK(g.size() == 2000);
+}
+
+TEST_CASE("recycled arrays: leases taken and returned from several threads", "[bake][pool]") {
+  RecycledArrays<int> pool;
+  std::atomic<bool> ok{true};  // Catch2's assertions are not thread-safe: checked after the join
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&pool, &ok, t] {
+      for (int i = 0; i < 200; ++i) {
+        auto lease = pool.acquire(static_cast<std::size_t>(64 + (i + t) % 7));
+        for (std::size_t k = 0; k < lease.size(); ++k) lease.data()[k] = t;  // each lease is its own
+        for (std::size_t k = 0; k < lease.size(); ++k)
+          if (lease.data()[k] != t) ok = false;
+      }
+    });
+  for (auto& th : threads) th.join();
+  CHECK(ok);
+}
