@@ -248,10 +248,10 @@ CLOUDLUT_FN vec2 cgCellCloud(int ring, int ix, int iz, vec4 g0, vec4 g1, vec4 g2
 }
 
 // Particle `layer` of cell (ring, ix, iz) of cloud amount c, mass factor f (cgCellCloud) and
-// level-of-detail weight w. Position, size and the
-// reference particle's rotation come from a hash of the cell's world coordinates (stable as the
-// camera moves). The bottom layer rests on the cloud base (flat bases); higher layers are
-// smaller by the top taper g4.z (heaped, cauliflower tops); no particle leaves [base, top].
+// level-of-detail weight w. Position, size and the reference particle's rotation come from a hash
+// of the cell's world coordinates (stable as the camera moves). The bottom layer rests on the
+// cloud base (flat bases); higher layers are smaller by the top taper g4.z (heaped, cauliflower
+// tops); no particle leaves [base, top].
 // Density: ρ = density scale · ramp(c) · f · r₀ / R · w, r₀ the radius the particle would have in
 // ring 0 (the same relative size), R the tables' reference radius.
 CLOUDLUT_FN CgParticle cgParticle(int ring, int ix, int iz, int layer, float c, float f, float w, vec4 g0,
