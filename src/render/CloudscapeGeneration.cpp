@@ -16,9 +16,10 @@ namespace {
 
 constexpr GLuint kCellsBinding = 6;
 // The cell-list buffer (cloudscape_generate.comp.glsl, block Generation): four counters, the
-// indirect dispatch arguments (uvec4 at byte 16), then one ivec4 per listed cell.
+// indirect dispatch arguments (uvec4 at byte 16), then per listed cell an ivec4 (its index, ring
+// and layers) and a vec4 (its cloud: amount, mass factor).
 constexpr std::size_t kCellsHeaderBytes = 32;
-constexpr std::size_t kCellBytes = 16;
+constexpr std::size_t kCellBytes = 32;
 constexpr std::size_t kIndirectOffset = 16;
 
 }  // namespace

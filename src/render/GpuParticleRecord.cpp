@@ -53,6 +53,7 @@ scene::GridParticle unpackGridParticle(const GpuParticleRecord& r, const scene::
   const glm::vec2 camXZ(eye.x, eye.z);
   const glm::vec2 delta = glm::abs(scene::grid::cgCellCentre(gp.ring, gp.cellX, gp.cellZ, grid.g0) - camXZ);
   gp.weight = scene::grid::cgRingWeight(gp.ring, std::max(delta.x, delta.y), grid.g0, grid.g3);
+  gp.fill = scene::grid::cgCellCloud(gp.ring, gp.cellX, gp.cellZ, grid.g0, grid.g1, grid.g2, grid.g3, grid.g4).y;
   return gp;
 }
 

@@ -159,8 +159,10 @@ float modelledFarDistance(const CloudType& c, const QualityPreset& q) {
 }
 
 glm::vec2 cloudscapeDensityRange(const CloudType& c, const QualityPreset& q, float referenceRadius) {
-  // ρ = density · ramp(amount) · cell₀ · rel / R · weight (cloudscape_grid.glsl, cgParticle) with
-  // rel = size · taper · mix(0.7, 1, amount): the same in every ring (mass conservation).
+  // ρ = density · ramp(amount) · f · cell₀ · rel / R · weight (cloudscape_grid.glsl, cgParticle) with
+  // rel = size · taper · mix(0.7, 1, amount), the same in every ring (mass conservation), and the
+  // cell's mass factor f ≤ 1 / (ramp · mix(0.7, 1, amount)) (cgCellCloud): at most a full core's ρ.
+  // The lower end holds for f · weight ≥ 1/16.
   (void)q;
   const float relMin = c.particleSize.x * (1.0f - c.topTaper) * 0.7f;
   const float relMax = c.particleSize.y;
@@ -210,16 +212,17 @@ CpuGeneration generate(const CloudType& cloud, const QualityPreset& q, const glm
         const glm::vec2 delta = glm::abs(centre - camXZ);
         const float w = grid::cgRingWeight(ring, std::max(delta.x, delta.y), g.g0, g.g3);
         if (!(w > 0.0f)) continue;
-        const float amount = grid::cgCoverage(centre, g.g1, g.g2, g.g3);
-        const int layers = grid::cgLayerCount(amount, g.g0, g.g4);
-        if (layers < 1) continue;
         const glm::vec4 b = grid::cgCellBound(ring, ix, iz, g.g0, g.g1, g.g2, g.g3);
         if (!grid::cgVisible(glm::vec3(b), b.w, eye, g.g3.y + b.w, f.planes[0], f.planes[1], f.planes[2],
                              f.planes[3], f.planes[4]))
           continue;
+        const glm::vec2 cellCloud = grid::cgCellCloud(ring, ix, iz, g.g0, g.g1, g.g2, g.g3, g.g4);
+        const int layers = grid::cgLayerCount(cellCloud.x, g.g0, g.g4);
+        if (layers < 1) continue;
         ++out.validCells;
         for (int k = 0; k < layers; ++k) {
-          const grid::CgParticle p = grid::cgParticle(ring, ix, iz, k, amount, w, g.g0, g.g1, g.g2, g.g3, g.g4);
+          const grid::CgParticle p =
+              grid::cgParticle(ring, ix, iz, k, cellCloud.x, cellCloud.y, w, g.g0, g.g1, g.g2, g.g3, g.g4);
           const float reach = std::max(p.radii.x, p.radii.y);
           if (!grid::cgVisible(p.centre, reach, eye, g.g3.y, f.planes[0], f.planes[1], f.planes[2], f.planes[3],
                                f.planes[4]))
@@ -234,6 +237,7 @@ CpuGeneration generate(const CloudType& cloud, const QualityPreset& q, const glm
           gp.cellZ = iz;
           gp.layer = k;
           gp.weight = p.weight;
+          gp.fill = cellCloud.y;
           out.particles.push_back(gp);
         }
       }

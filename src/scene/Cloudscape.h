@@ -81,8 +81,9 @@ GridParameters gridParameters(const CloudType& cloud, const QualityPreset& quali
 float modelledFarDistance(const CloudType& cloud, const QualityPreset& quality);
 
 // Range of the particles' density scales ρ this cloudscape can produce for tables of reference
-// radius R (for bake --for-scene): the tables' density axis should cover it. Particles faded below
-// a level-of-detail weight of 1/16 are not counted.
+// radius R (for bake --for-scene): the tables' density axis should cover it. Particles whose
+// level-of-detail weight times their cell's mass factor (GridParticle::fill) is below 1/16 are not
+// counted: they are nearly transparent, and the renderer shades densities below the axis linearly.
 glm::vec2 cloudscapeDensityRange(const CloudType& cloud, const QualityPreset& quality,
                                  float referenceRadius = static_cast<float>(defaults::kParticleRadiusMetres));
 
@@ -97,6 +98,7 @@ struct GridParticle {
   Particle particle;
   int ring = 0, cellX = 0, cellZ = 0, layer = 0;
   float weight = 1.0f;  // level-of-detail fade
+  float fill = 1.0f;    // its cell's mass factor f (cloudscape_grid.glsl, cgCellCloud): 1 in ring 0
 };
 
 struct CpuGeneration {

@@ -3,9 +3,10 @@
 // render/CloudscapeGeneration.cpp: STAGE (below), GROUP_SIZE (threads per work group, from which
 // the C++ and stage 1 compute the dispatch sizes) and GRID_LAYER_LIMIT (the grid identity):
 //   STAGE 0: one thread per grid cell (ring-major); non-empty cells in the frustum are appended
-//            (atomic counter) to the cell list;
+//            (atomic counter) to the cell list with their cloud (cgCellCloud: amount, mass factor);
 //   STAGE 1: one thread writes the indirect dispatch arguments for stage 2 from the counter;
-//   STAGE 2: one thread per valid cell (glDispatchComputeIndirect): its particles, culled
+//   STAGE 2: one thread per valid cell (glDispatchComputeIndirect): its particles (from the cloud
+//            listed by stage 0, not sampled again), culled
 //            against the frustum and the far distance, appended to the particle buffer with their
 //            back-to-front sort key. The level-of-detail weight is folded into each particle's
 //            density (cgParticle) and not stored. A record maps the unit sphere by
@@ -22,13 +23,18 @@ uniform vec3 uEye;
 uniform vec3 uSun;  // unit, toward the sun (the records' shadow-ray extinction scale)
 uniform vec4 uPlanes[5];
 
+struct GenerationCell {
+  ivec4 id;    // (ix, iz, ring, layers)
+  vec4 cloud;  // (amount, mass factor f, 0, 0): cgCellCloud
+};
+
 layout(std430, binding = 6) buffer Generation {
   uint cellCount;
   uint particleCount;
   uint particleCapacity;
   uint particleOverflow;
   uvec4 dispatchArgs;  // x, y, z groups for stage 2
-  ivec4 cells[];       // (ix, iz, ring, layers)
+  GenerationCell cells[];
 };
 
 layout(std430, binding = 1) buffer SortKeys {
@@ -51,26 +57,27 @@ void main() {
   vec2 delta = abs(centre - camXZ);
   float w = cgRingWeight(ring, max(delta.x, delta.y), uG0, uG3);
   if (!(w > 0.0f)) return;
-  float amount = cgCoverage(centre, uG1, uG2, uG3);
-  int layers = cgLayerCount(amount, uG0, uG4);
-  if (layers < 1) return;
   vec4 b = cgCellBound(ring, ix, iz, uG0, uG1, uG2, uG3);
   if (!cgVisible(b.xyz, b.w, uEye, uG3.y + b.w, uPlanes[0], uPlanes[1], uPlanes[2], uPlanes[3], uPlanes[4])) return;
+  vec2 cloud = cgCellCloud(ring, ix, iz, uG0, uG1, uG2, uG3, uG4);
+  int layers = cgLayerCount(cloud.x, uG0, uG4);
+  if (layers < 1) return;
   uint slot = atomicAdd(cellCount, 1u);
-  cells[slot] = ivec4(ix, iz, ring, layers);
+  cells[slot].id = ivec4(ix, iz, ring, layers);
+  cells[slot].cloud = vec4(cloud, 0.0f, 0.0f);
 #elif STAGE == 1
   if (id == 0u) dispatchArgs = uvec4((cellCount + uint(GROUP_SIZE) - 1u) / uint(GROUP_SIZE), 1u, 1u, 0u);
 #else
   if (id >= cellCount) return;
-  ivec4 cell = cells[id];
+  ivec4 cell = cells[id].id;
+  vec2 cloud = cells[id].cloud.xy;  // (amount, mass factor)
   int ring = cell.z;
   vec2 camXZ = vec2(uEye.x, uEye.z);
   vec2 centre = cgCellCentre(ring, cell.x, cell.y, uG0);
   vec2 delta = abs(centre - camXZ);
   float w = cgRingWeight(ring, max(delta.x, delta.y), uG0, uG3);
-  float amount = cgCoverage(centre, uG1, uG2, uG3);
   for (int k = 0; k < cell.w; ++k) {
-    CgParticle p = cgParticle(ring, cell.x, cell.y, k, amount, w, uG0, uG1, uG2, uG3, uG4);
+    CgParticle p = cgParticle(ring, cell.x, cell.y, k, cloud.x, cloud.y, w, uG0, uG1, uG2, uG3, uG4);
     float reach = max(p.radii.x, p.radii.y);
     if (!cgVisible(p.centre, reach, uEye, uG3.y, uPlanes[0], uPlanes[1], uPlanes[2], uPlanes[3], uPlanes[4]))
       continue;

@@ -23,8 +23,10 @@
 // tables' unit optical radius, τ = σ ρ ℓ along a unit-sphere chord ℓ; independent of b). A ring
 // keeps the same layers per cell and the same radius per cell size, so the column optical depth
 // per unit area is the same in every ring when ρ does not depend on the ring: ρ is that of the
-// ring-0 particle of the same relative size. The level-of-detail weights of two overlapping rings
-// sum to 1 and multiply ρ only, so a cross-fade conserves it too.
+// ring-0 particle of the same relative size. A coarse cell stands for the (2^r)² ring-0 cells under
+// it: it takes its amount and its column from the coverage averaged over its footprint
+// (cgCellCloud), not from the coverage at its centre. The level-of-detail weights of two
+// overlapping rings sum to 1 and multiply ρ only, so a cross-fade conserves it too.
 
 #ifndef CLOUDLUT_FN
 #define CLOUDLUT_FN
@@ -194,14 +196,66 @@ CLOUDLUT_FN mat3 cgRotationMatrix(vec4 q) {
 // dense.
 CLOUDLUT_FN float cgDensityRamp(float c, vec4 g4) { return mix(g4.w, 1.0f, smoothstep(0.0f, 0.6f, c)); }
 
-// Particle `layer` of cell (ring, ix, iz) of cloud amount c and weight w. Position, size and the
-// reference particle's rotation come from a hash of the cell's world coordinates (stable as the
-// camera moves). The bottom layer rests on the cloud base (flat bases); higher layers are
-// smaller by the top taper g4.z (heaped, cauliflower tops); no particle leaves [base, top].
-// Density: ρ = density scale · ramp(c) · r₀ / R · w, r₀ the radius the particle would have in
+// Relative size of a particle of a cell of amount c, as a factor of its random size: 0.7 at a
+// cloud's edge to 1 in a full column (dimensionless).
+CLOUDLUT_FN float cgAmountSize(float c) { return mix(0.7f, 1.0f, c); }
+
+// Column weight of a cell of amount c: its expected vertical column optical depth per unit area up
+// to a factor that is the same for every cell of every ring (density scale, σ, the cube of the
+// mean random size): Σ over its layers of ramp(c) · (cgAmountSize(c) · taper)³, since a particle
+// adds ∝ ρ a² with ρ ∝ ramp · a and a ∝ cgAmountSize · taper · size (cgParticle). 0 when c = 0.
+CLOUDLUT_FN float cgColumnWeight(float c, vec4 g0, vec4 g4) {
+  int count = cgLayerCount(c, g0, g4);
+  float sum = 0.0f;
+  for (int k = 0; k < count; ++k) {
+    float taper = 1.0f - g4.z * float(k) / max(float(count) - 1.0f, 1.0f);
+    sum += taper * taper * taper;
+  }
+  float m = cgAmountSize(c);
+  return cgDensityRamp(c, g4) * m * m * m * sum;
+}
+
+// Coverage samples per side of a cell of ring `ring`: one per ring-0 cell under it (2^ring), at
+// most 4 (ring 3 samples the centres of the ring-1 cells under it).
+CLOUDLUT_FN int cgCoverageSamples(int ring) { return ring < 2 ? (1 << ring) : 4; }
+
+// The cloud of cell (ring, ix, iz) as (amount c [0, 1], mass factor f): a ring-0 cell takes the
+// coverage at its centre, f = 1. A coarser cell averages over an n × n grid of sub-cell centres
+// (n = cgCoverageSamples): c = the mean amount (its column's shape), f = the mean column weight
+// over the samples / the column weight at c, so that its column optical depth is the mean of the
+// finer cells it stands for (the coverage is thresholded: the amount at one point, or the weight
+// of the mean amount, does not carry their mean). f ≤ 1 / (ramp(c) · cgAmountSize(c)): no
+// particle is denser than a full cloud's core particle of its size (cloudscapeDensityRange).
+CLOUDLUT_FN vec2 cgCellCloud(int ring, int ix, int iz, vec4 g0, vec4 g1, vec4 g2, vec4 g3, vec4 g4) {
+  vec2 centre = cgCellCentre(ring, ix, iz, g0);
+  if (ring == 0) return vec2(cgCoverage(centre, g1, g2, g3), 1.0f);
+  int n = cgCoverageSamples(ring);
+  float s = cgCellSize(ring, g0);
+  float amount = 0.0f;
+  float weight = 0.0f;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      vec2 offset = (vec2(float(i), float(j)) + vec2(0.5f)) / float(n) - vec2(0.5f);
+      float a = cgCoverage(centre + offset * s, g1, g2, g3);
+      amount += a;
+      weight += cgColumnWeight(a, g0, g4);
+    }
+  float samples = float(n * n);
+  float c = amount / samples;
+  if (!(c > 0.0f)) return vec2(0.0f, 0.0f);
+  float f = (weight / samples) / cgColumnWeight(c, g0, g4);
+  return vec2(c, min(f, 1.0f / (cgDensityRamp(c, g4) * cgAmountSize(c))));
+}
+
+// Particle `layer` of cell (ring, ix, iz) of cloud amount c, mass factor f (cgCellCloud) and
+// level-of-detail weight w. Position, size and the reference particle's rotation come from a hash
+// of the cell's world coordinates (stable as the camera moves). The bottom layer rests on the
+// cloud base (flat bases); higher layers are smaller by the top taper g4.z (heaped, cauliflower
+// tops); no particle leaves [base, top].
+// Density: ρ = density scale · ramp(c) · f · r₀ / R · w, r₀ the radius the particle would have in
 // ring 0 (the same relative size), R the tables' reference radius.
-CLOUDLUT_FN CgParticle cgParticle(int ring, int ix, int iz, int layer, float c, float w, vec4 g0, vec4 g1,
-                                  vec4 g2, vec4 g3, vec4 g4) {
+CLOUDLUT_FN CgParticle cgParticle(int ring, int ix, int iz, int layer, float c, float f, float w, vec4 g0,
+                                  vec4 g1, vec4 g2, vec4 g3, vec4 g4) {
   uint h = cgHash3(ix, iz, uint(g3.z) ^ (uint(ring) * 0x9e3779b9u) ^ (uint(layer) * 0x85ebca6bu));
   float u0 = cgUnit(h);
   float u1 = cgUnit(cgHash(h ^ 0x1u));
@@ -216,7 +270,7 @@ CLOUDLUT_FN CgParticle cgParticle(int ring, int ix, int iz, int layer, float c, 
   vec2 xz = cgCellCentre(ring, ix, iz, g0) + (vec2(u0, u1) - vec2(0.5f)) * (spread * s);
   float thickness = g1.w - g1.z;
   float spacing = thickness / g0.w;
-  float rel = mix(g2.x, g2.y, u3) * taper * mix(0.7f, 1.0f, c);
+  float rel = mix(g2.x, g2.y, u3) * taper * cgAmountSize(c);
   float r = s * rel;
   float want = max(r * g2.z, 0.6f * spacing * taper);
   float rv;
@@ -232,7 +286,7 @@ CLOUDLUT_FN CgParticle cgParticle(int ring, int ix, int iz, int layer, float c, 
   p.centre = vec3(xz.x, y, xz.y);
   p.radii = vec3(r, rv, r);
   p.noise = cgRandomRotation(cgUnit(cgHash(h ^ 0x5u)), cgUnit(cgHash(h ^ 0x6u)), cgUnit(cgHash(h ^ 0x7u)));
-  p.density = g1.y * cgDensityRamp(c, g4) * (g0.x * rel / g4.x) * w;
+  p.density = g1.y * cgDensityRamp(c, g4) * f * (g0.x * rel / g4.x) * w;
   p.weight = w;
   return p;
 }
