@@ -132,6 +132,32 @@ TEST_CASE("reference scene: a uniform sky on a non-absorbing medium gives sky·(
   CHECK(within(e.sky, e.skySe, 1.0 - e.transmittance, e.transmittanceSe));
 }
 
+TEST_CASE("reference scene: a sky darker below the horizon weights the paths that leave downward", "[reference-scene]") {
+  // The sky below the horizon (SceneLight::skyBelow) changes only what an escaping path collects,
+  // not the random draws: the ambient is linear in it, path by path, and at 1 it is the uniform
+  // sky. Seen from above, a cloud sends back more ground than seen from below.
+  const ReferenceParticle model(DensityModel::Noise, 1);
+  SceneMedium medium = sphereMedium(model, 1.0, 1.0);
+  const auto ambient = [&](double below, const glm::dvec3& eye) {
+    SceneLight light;
+    light.skyBelow = below;
+    ScenePtSettings st;
+    st.seed = 9;
+    return estimateRay(medium, light, st, eye, -eye, 3000, 0);
+  };
+  for (const glm::dvec3 eye : {glm::dvec3(0.1, 4.0, 0.2), glm::dvec3(0.1, -4.0, 0.2)}) {
+    const RayEstimate dark = ambient(0.0, eye), uniform = ambient(1.0, eye), tenth = ambient(0.1, eye);
+    CHECK(tenth.sky == Approx(dark.sky + 0.1 * (uniform.sky - dark.sky)).epsilon(1e-12));
+    CHECK(uniform.single == dark.single);
+    CHECK(uniform.transmittance == dark.transmittance);
+    CHECK(within(uniform.sky, uniform.skySe, 1.0 - uniform.transmittance, uniform.transmittanceSe));
+    CHECK(dark.sky < uniform.sky);
+  }
+  const double fromAbove = ambient(0.0, glm::dvec3(0.1, 4.0, 0.2)).sky, fromBelow = ambient(0.0, glm::dvec3(0.1, -4.0, 0.2)).sky;
+  INFO("sky-only ambient seen from above " << fromAbove << ", from below " << fromBelow);
+  CHECK(fromAbove > fromBelow);
+}
+
 TEST_CASE("reference scene: the image is the same for any number of threads", "[reference-scene]") {
   const ReferenceParticle model(DensityModel::Noise, 1);
   SceneMedium medium = sphereMedium(model, 1.0, 0.6);

@@ -101,6 +101,36 @@ CLOUDLUT_FN float singleSunTransmittance(float tableSource, float tauOwnAtMean) 
 // so the chord adds exactly the sky it hides, 1 − e^{−τ} (dimensionless).
 CLOUDLUT_FN float uniformSkyAmbient(float tau) { return chordOpacity(tau); }
 
+// The ambient under a sky that is not uniform: radiance skyAbove from every direction above the
+// horizon, skyBelow (the ground's return) from every direction below it. In a conservative medium
+// the diffuse field is, in the two-stream (Eddington) diffusion approximation of a horizontal
+// layer, I(z, μ) = I0(z) + μ·I1(z) with μ the cosine of the propagation direction to the zenith:
+//   I0 = skyBelow + (skyAbove − skyBelow)·(τbelow + z0)/(τabove + τbelow + 2·z0),
+//   I1 = −(1/(1 − g))·dI0/dτ,   z0 = 2/(3(1 − g)) the extrapolation length (Marshak's boundary
+// condition), τabove and τbelow the vertical optical depths of the cloud above and below the
+// point. The light the point scatters toward the camera (view direction `dir`, propagation −dir)
+// is the phase function's average of I, I0 − g·dir.y·I1, whose share of skyAbove is
+//   a = (τbelow + z0·(1 + (3/2)·g·dir.y)) / (τabove + τbelow + 2·z0),  clamped to [0, 1].
+// Without cloud around (τ → 0) this is the share of the phase lobe that comes from above,
+// ½ + ¾·g·dir.y (first order in the phase function); deep inside it tends to the diffusion
+// profile; at the base of a thick layer seen from below (the mean scattering point at optical
+// depth dir.y above the base) it equals the Eddington emergent radiance I0 + dir.y·|I1| at the
+// base. dir.y: the view direction's cosine to the zenith (> 0 looking up); g: the mean cosine of
+// the later phase function; τabove, τbelow dimensionless. Returns a (dimensionless).
+CLOUDLUT_FN float skyAboveShare(float tauAbove, float tauBelow, float g, float dirUp) {
+  float z0 = 2.0f / (3.0f * max(1.0f - g, 1e-3f));
+  float above = max(tauAbove, 0.0f), below = max(tauBelow, 0.0f);
+  return clamp((below + z0 * (1.0f + 1.5f * g * dirUp)) / (above + below + 2.0f * z0), 0.0f, 1.0f);
+}
+
+// Ambient radiance (the sky's units: radiance per channel) of a chord of optical depth τ under
+// that sky: the chord's opacity 1 − e^{−τ} times the field it scatters toward the camera,
+// skyBelow + (skyAbove − skyBelow)·a (skyAboveShare at the chord's mean scattering point).
+// With skyAbove = skyBelow it is uniformSkyAmbient(τ)·sky exactly, whatever a.
+CLOUDLUT_FN vec3 layeredSkyAmbient(float tau, float share, vec3 skyAbove, vec3 skyBelow) {
+  return chordOpacity(tau) * (skyBelow + (skyAbove - skyBelow) * share);
+}
+
 // Transmittance of the sunlight's scattered part through τ of neighbouring cloud: the
 // two-stream (Eddington) transmittance 1/(1 + ¾(1 − g)τ) of a conservative slab of optical
 // thickness τ for phase asymmetry g (the mean cosine of the later phase function). It

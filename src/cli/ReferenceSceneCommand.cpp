@@ -22,8 +22,9 @@ int runReferenceScene(int argc, char** argv) {
       "Path-traced ground truth of a particle scene (docs/SCENE_FORMAT.md): delta tracking of the exact medium\n"
       "(overlapping particles whose densities add, each the reference particle's density model), next-event\n"
       "estimation to the sun with the first phase function, the later phase function for every continuation,\n"
-      "an optional uniform sky. Writes a linear EXR: R, G, B, A = 1 - transmittance, stderr.R/G/B/A (standard\n"
-      "error of each pixel's mean), single, multiple (per unit sun irradiance) and ambient (per unit sky radiance).\n"
+      "an optional sky (uniform, or --sky-below F times as bright below the horizon as above it). Writes a linear\n"
+      "EXR: R, G, B, A = 1 - transmittance, stderr.R/G/B/A (standard error of each pixel's mean), single, multiple\n"
+      "(per unit sun irradiance) and ambient (per unit sky radiance above the horizon).\n"
       "Negative coordinates: write --eye=-1,2,3.");
   options.add_options()
     ("particles", "scene file (JSON, docs/SCENE_FORMAT.md)", cxxopts::value<std::string>())

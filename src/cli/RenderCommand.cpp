@@ -67,7 +67,9 @@ int runRender(int argc, char** argv) {
     ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel", cxxopts::value<int>()->default_value("16"))
     ("volume-pool-mib", "volume blending: node pool budget of one screen tile in MiB (capped by the GL's storage block limit)", cxxopts::value<double>()->default_value("128"))
     ("no-occlusion", "constant sunlight (no light-space occlusion, no sun volume shadows)")
-    ("lighting", "lighting model: cloud (sunlight per shading point, multiple scattering of the cloud around each point, ambient from the sky's opacity) or seed (the seed paper's per-particle model)", cxxopts::value<std::string>()->default_value("cloud"))
+    ("lighting", "lighting model: cloud (sunlight per shading point, multiple scattering of the cloud around each point, "
+     "ambient from the sky above and the ground below through the cloud above and below each point) or seed (the "
+     "seed paper's per-particle model)", cxxopts::value<std::string>()->default_value("cloud"))
     ("sunlight", "sunlight per particle (the seed's occlusion pass) or per shading point (the sun optical-depth volume); default: the lighting model's (seed: particle, cloud: volume)", cxxopts::value<std::string>())
     ("out", "output image: FILE.png (tone-mapped sRGB) or FILE.exr (linear RGB, A = 1 - transmittance, Z)", cxxopts::value<std::string>())
     ("width", "image width in pixels", cxxopts::value<long long>()->default_value("1280"))

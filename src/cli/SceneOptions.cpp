@@ -56,7 +56,9 @@ void addViewOptions(cxxopts::Options& options) {
     ("fov", "vertical field of view, degrees (overrides the scene; default 45)", cxxopts::value<double>())
     ("sun", "direction toward the sun x,y,z (overrides the scene)", cxxopts::value<std::string>())
     ("sun-color", "sun irradiance r,g,b (overrides the scene; default 1,1,1)", cxxopts::value<std::string>())
-    ("sky-color", "sky radiance r,g,b (overrides the scene; 0,0,0 = no sky)", cxxopts::value<std::string>());
+    ("sky-color", "sky radiance r,g,b (overrides the scene; 0,0,0 = no sky)", cxxopts::value<std::string>())
+    ("sky-below", "radiance of the sky below the horizon (the ground's return) as a fraction of the sky colour; "
+     "1 = a uniform sky (default; the atmosphere uses its ground albedo)", cxxopts::value<double>());
 }
 
 scene::ViewSettings parseViewOverrides(const cxxopts::ParseResult& args) {
@@ -72,6 +74,11 @@ scene::ViewSettings parseViewOverrides(const cxxopts::ParseResult& args) {
   if (args.count("sun")) o.sunDirection = parseVec3Option(args["sun"].as<std::string>(), "sun", false);
   if (args.count("sun-color")) o.sunColor = parseVec3Option(args["sun-color"].as<std::string>(), "sun-color", true);
   if (args.count("sky-color")) o.skyColor = parseVec3Option(args["sky-color"].as<std::string>(), "sky-color", true);
+  if (args.count("sky-below")) {
+    const double below = args["sky-below"].as<double>();
+    if (!(below >= 0.0 && below <= 1e3)) throw UsageError("--sky-below: expected a fraction of the sky in [0, 1000]");
+    o.skyBelow = static_cast<float>(below);
+  }
   if (o.up && !(glm::length(*o.up) > 0.0f)) throw UsageError("--up: must not be zero");
   return o;
 }

@@ -11,7 +11,7 @@
 
 namespace cloudlut::cli {
 
-// --eye, --target, --up, --fov, --sun, --sun-color, --sky-color.
+// --eye, --target, --up, --fov, --sun, --sun-color, --sky-color, --sky-below.
 void addViewOptions(cxxopts::Options& options);
 scene::ViewSettings parseViewOverrides(const cxxopts::ParseResult& args);
 

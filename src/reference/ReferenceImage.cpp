@@ -24,6 +24,10 @@ io::ExrImage renderReferenceScene(const std::vector<scene::Particle>& particles,
     throw std::invalid_argument(problem);
   SceneLight light;
   light.sunDirection = glm::normalize(glm::dvec3(view.lighting.sunDirection));
+  const glm::vec3 below = view.lighting.skyBelow;
+  if (below.x != below.y || below.y != below.z)
+    throw std::invalid_argument("the path tracer takes one sky-below fraction for every channel");
+  light.skyBelow = static_cast<double>(below.y);
   ScenePtSettings st = settings;
   st.first = medium.first;
   st.later = medium.later;
@@ -57,17 +61,17 @@ io::ExrImage renderReferenceScene(const std::vector<scene::Particle>& particles,
     out.channel("multiple")[i] = static_cast<float>(e.multiple);
     out.channel("ambient")[i] = static_cast<float>(e.sky);
   }
-  char buf[640];
+  char buf[704];
   std::snprintf(buf, sizeof buf,
                 "{\"density_model\": \"%s\", \"seed\": %llu, \"unit_optical_radius\": %.9g, \"first_phase\": [%d, %.6g], "
                 "\"later_phase\": [%d, %.6g], \"spp\": %d, \"rng_seed\": %llu, \"max_order\": %d, \"jitter\": %s, "
-                "\"detail_noise\": [%.6g, %.9g, %d]}",
+                "\"detail_noise\": [%.6g, %.9g, %d], \"sky_below\": %.6g}",
                 toString(medium.model).c_str(), static_cast<unsigned long long>(medium.seed), medium.unitOpticalRadius(),
                 glslKind(st.first.kind), static_cast<double>(st.first.param), glslKind(st.later.kind),
                 static_cast<double>(st.later.param),
                 st.samplesPerPixel, static_cast<unsigned long long>(st.seed), st.maxOrder, st.jitter ? "true" : "false",
                 static_cast<double>(detail.enabled() ? detail.amplitude : 0.0f), static_cast<double>(detail.scale),
-                detail.seed);
+                detail.seed, light.skyBelow);
   out.attributes["cloudlutReference"] = buf;
   return out;
 }

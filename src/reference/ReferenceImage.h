@@ -23,7 +23,8 @@ struct ReferenceSceneStats {
 // Channels: R, G, B (linear radiance: sun colour × (single + multiple) + sky colour × ambient),
 // A = 1 − transmittance, their standard errors "stderr.R", "stderr.G", "stderr.B", "stderr.A"
 // (of each pixel's mean), and the uncoloured components "single", "multiple" (per unit sun
-// irradiance, sr⁻¹) and "ambient" (per unit sky radiance). The phase functions are the
+// irradiance, sr⁻¹) and "ambient" (per unit sky radiance above the horizon; below it the sky is
+// view.lighting.skyBelow times that, one fraction for every channel). The phase functions are the
 // medium's (they override settings.first / later). Attribute "cloudlutReference" records the
 // medium and the settings as JSON. `stats` (optional) receives the time and mean path length.
 // std::invalid_argument (mediumWorkProblem's message) when a particle is too thick to trace;

@@ -203,7 +203,7 @@ PathSample tracePath(const SceneMedium& m, const SceneLight& light, const SceneP
     const RaySpans next(m, origin, dir, sc);
     const double t = freeFlight(m, next, rng, active);
     if (t == kInf) {
-      out.sky += 1.0;  // constant sky radiance reaches this vertex unattenuated
+      out.sky += dir.y >= 0.0 ? 1.0 : light.skyBelow;  // the sky (above the horizon) or the ground's return
       break;
     }
     origin += t * dir;

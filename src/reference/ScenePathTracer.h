@@ -21,7 +21,9 @@
 // multiplied by m(x) = 1 + a·n(x/s) ∈ [1 − a, 1 + a] (lut_formats/glsl/cloudlut_detail_noise.glsl).
 //
 // Light: a directional sun (unit irradiance, times the sun colour) along −l, and optionally a
-// uniform sky (constant radiance from every direction, times the sky colour).
+// sky (times the sky colour): radiance 1 from every direction above the horizon (a direction ω
+// with ω.y ≥ 0, world +y up) and SceneLight::skyBelow from every direction below it (the
+// ground's return; 1, the default, is the uniform sky).
 //
 // The estimator: backward path tracing from the camera. Free flights by delta tracking against
 // a piecewise-constant majorant (the sum of the per-particle majorants β·R·ρ_i·|M_i⁻¹ω| of the
@@ -112,10 +114,11 @@ std::string mediumWorkProblem(const SceneMedium& medium);
 
 struct SceneLight {
   glm::dvec3 sunDirection{0.0, 1.0, 0.0};  // unit, toward the sun
+  double skyBelow = 1.0;  // sky radiance below the horizon per unit sky radiance above it
 };
 
 // Per-ray estimates (means of the samples and their standard errors): radiance per unit sun
-// irradiance of order 1 and of orders ≥ 2, radiance per unit sky radiance, and the camera
+// irradiance of order 1 and of orders ≥ 2, radiance per unit sky radiance (above the horizon), and the camera
 // ray's transmittance.
 struct RayEstimate {
   double single = 0, singleSe = 0;

@@ -17,10 +17,12 @@ const std::vector<std::string> kFragmentFiles = {"cloudlut_geometry.glsl", "clou
                                                  "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
                                                  "particle_common.glsl", "volume_fragments.glsl",
                                                  "sun_volume.glsl", "sun_volume_chord.glsl",
-                                                 "sun_volume_sampling.glsl", "cloudlut_detail_noise.glsl",
+                                                 "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
+                                                 "cloudlut_detail_noise.glsl",
                                                  "particle_detail.glsl", "particle.frag.glsl"};
 constexpr GLsizei kBoxVertices = 36;  // 6 faces × 2 triangles (particle.vert.glsl)
 constexpr int kSunVolumeUnit = 3;      // texture unit after the three tables (ShadingTables)
+constexpr int kZenithVolumeUnit = 4;
 
 }  // namespace
 
@@ -36,7 +38,8 @@ ParticlePass::ParticlePass(const GlFunctions& gl, const GlContext& context, cons
 ParticlePass::~ParticlePass() { gl_.DeleteVertexArrays(1, &vao_); }
 
 void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
-                        const RenderSettings& s, const SunVolume& sun, bool sunBuilt) {
+                        const RenderSettings& s, const SunVolume& sun, bool sunBuilt, const SunVolume& zenith,
+                        bool zenithBuilt) {
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Enable(GL_CULL_FACE);
   gl_.FrontFace(GL_CCW);
@@ -56,6 +59,7 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   uniforms.set("uSunDirection", glm::normalize(light.sunDirection));
   uniforms.set("uSunColor", light.sunColor);
   uniforms.set("uSkyColor", light.skyColor);
+  uniforms.set("uSkyBelowColor", light.skyColor * light.skyBelow);
   uniforms.set("uTerms", static_cast<GLint>(s.terms));
   tables_.bind(uniforms);
   uniforms.set("uMinOpacityForDistance", kMinOpacityForDistance);
@@ -67,6 +71,8 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   uniforms.set("uSunlightVolume", sunBuilt && s.occlusion && s.sunlight == SunlightModel::Volume ? 1 : 0);
   sun.bind(uniforms, kSunVolumeUnit);
   if (!sunBuilt) uniforms.set("uSunCascades", 0);
+  zenith.bind(uniforms, kZenithVolumeUnit, "uZenith");
+  if (!zenithBuilt) uniforms.set("uZenithCascades", 0);
   buffers_.records.bind(ParticleBuffers::kRecordsBinding);
   if (buffers_.sortKeys.bytes() == 0) buffers_.sortKeys.ensure(64);
   buffers_.sortKeys.bind(ParticleBuffers::kSortKeysBinding);

@@ -35,9 +35,12 @@ class ParticlePass {
   // 1e-6 · farPlane): in the order of the sorted keys when `useOrder`, else in record order.
   // `volume`: the fragment lists are bound (VolumeResolve::prepare) and receive the segments.
   // `sun`: the sun optical-depth volume of this frame when `sunBuilt` (else every point is
-  // unshadowed by it). Waits for the GPU (glFinish).
+  // unshadowed by it). `zenith`: the zenith optical-depth volume (vertical columns) when
+  // `zenithBuilt`, for the cloud lighting's ambient under a sky from above (else no cloud lies
+  // above or below any point). Waits for the GPU (glFinish).
   void draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
-            const RenderSettings& settings, const SunVolume& sun, bool sunBuilt);
+            const RenderSettings& settings, const SunVolume& sun, bool sunBuilt, const SunVolume& zenith,
+            bool zenithBuilt);
 
  private:
   const GlFunctions& gl_;

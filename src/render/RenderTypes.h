@@ -36,7 +36,8 @@ const char* toString(BlendMode mode);
 //   Cloud  light that flows through the cloud: sunlight per shading point from the sun
 //          optical-depth volume, multiple scattering blending the particle's own sphere at the
 //          ray's density ρ·T̄ with the sphere of the cloud around the point (its column toward
-//          and away from the sun), ambient sky·(1 − e^{−τ}) (cloudlut_shading.glsl).
+//          and away from the sun), ambient (1 − e^{−τ}) times the field of the sky above and the
+//          ground below through the cloud above and below the point (cloudlut_shading.glsl).
 enum class LightingModel { Seed, Cloud };
 // Where the sunlight reaching a particle is evaluated: once per particle (seed §5.3, the
 // occlusion pass) or per shading point (the sun optical-depth volume).

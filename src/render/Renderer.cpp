@@ -46,6 +46,7 @@ struct Renderer::Impl {
   CloudscapeGeneration generation;
   LightOcclusion occlusion;
   SunVolume sunVolume;
+  SunVolume zenithVolume;  // the same structure, columns toward the zenith: the ambient's sky visibility
   ParticlePass particles;
   VolumeResolve volume;
   Upscale upscale;
@@ -60,6 +61,7 @@ struct Renderer::Impl {
         generation(gl, budget, buffers),
         occlusion(gl, budget, buffers),
         sunVolume(gl, c, budget, buffers),
+        zenithVolume(gl, c, budget, buffers),
         particles(gl, c, luts, buffers),
         volume(gl, budget),
         upscale(gl, budget) {
@@ -96,10 +98,17 @@ struct Renderer::Impl {
                        " pixels per side");
   }
 
+  // Which light-space volumes a frame built (illuminate).
+  struct Built {
+    bool sun = false, zenith = false;
+  };
+
   // The sunlight of the frame: the seed's per-particle occlusion when the settings take the
   // sunlight per particle, the sun optical-depth volume over `grid` when the lighting or the
-  // sunlight needs it. Returns whether the volume was built.
-  bool illuminate(std::size_t count, const SunVolumeGrid& grid, const RenderSettings& s, RenderStats* stats) {
+  // sunlight needs it; and the zenith volume over `zenithGrid` when the ambient needs it
+  // (needsZenithVolume). Returns which volumes were built.
+  Built illuminate(std::size_t count, const SunVolumeGrid& grid, const SunVolumeGrid& zenithGrid, const RenderSettings& s,
+                   RenderStats* stats) {
     const Stopwatch clock;
     std::size_t dropped = 0, skipped = 0;
     if (s.sunlight == SunlightModel::Particle)
@@ -109,21 +118,32 @@ struct Renderer::Impl {
       skipped = sunVolume.build(grid, count, particles.tables().opticalDepthTexture(),
                                 particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(),
                                 stats != nullptr);
+    const bool zenith = needsZenithVolume(s) && count > 0;
+    if (zenith)
+      zenithVolume.build(zenithGrid, count, particles.tables().opticalDepthTexture(),
+                         particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), false);
     gl.Finish();
     if (stats) {
       stats->occlusionSeconds = clock.seconds();
       if (s.occlusion && count > 0) stats->tileOverflow = dropped;
       stats->sunFootprintOverflow = skipped;
     }
-    return sun;
+    return {sun, zenith};
   }
 
   static bool needsSunVolume(const RenderSettings& s) {
     return s.lighting == LightingModel::Cloud || (s.occlusion && s.sunlight == SunlightModel::Volume);
   }
 
+  // The cloud lighting's ambient needs the cloud above and below each point only when the sky is
+  // darker (or brighter) below the horizon than above it (under a uniform sky it is exact without).
+  static bool needsZenithVolume(const RenderSettings& s) {
+    return s.lighting == LightingModel::Cloud && (s.terms & kTermAmbient) != 0 && s.view.lighting.skyBelow != glm::vec3(1.0f);
+  }
+
   // Shading and blending at 1/downscale resolution, the volume resolve, the upscale, read-back.
-  Image draw(std::size_t count, bool useOrder, float farPlane, const RenderSettings& s, bool sun, RenderStats* stats) {
+  Image draw(std::size_t count, bool useOrder, float farPlane, const RenderSettings& s, Built built, RenderStats* stats) {
+    const bool sun = built.sun;
     const int w = (s.width + s.downscale - 1) / s.downscale, h = (s.height + s.downscale - 1) / s.downscale;
     requireTargetSize(w, h, s);
     const bool blendVolume = s.blend == BlendMode::Volume;
@@ -142,7 +162,7 @@ struct Renderer::Impl {
     const Stopwatch drawClock;
     if (blendVolume) {
       volume.run(target.colourTexture(),
-                 [&] { particles.draw(count, useOrder, true, farPlane, w, h, s, sunVolume, sun); });
+                 [&] { particles.draw(count, useOrder, true, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith); });
       if (stats) {
         const VolumeResolve::Counts c = volume.counts();
         stats->fragments = c.fragments;
@@ -154,7 +174,7 @@ struct Renderer::Impl {
         stats->volumePoolBytes = volume.tiling().poolBytes;
       }
     } else {
-      particles.draw(count, useOrder, false, farPlane, w, h, s, sunVolume, sun);
+      particles.draw(count, useOrder, false, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith);
     }
     if (stats) {
       stats->renderSeconds = drawClock.seconds();
@@ -191,10 +211,12 @@ struct Renderer::Impl {
     }
     const float farPlane = upload.upload(list, order, eye, glm::normalize(s.view.lighting.sunDirection));
     if (stats) stats->uploadSeconds = clock.seconds();
-    const bool sun = illuminate(list.size(), needsSunVolume(s) ? sunGridFor(list, s) : SunVolumeGrid{}, s, stats);
     float altitude = 0.0f;  // of the particles' mean centre, for the atmosphere's cloud lighting
     for (const scene::Particle& p : list) altitude += p.center.y / static_cast<float>(list.size());
-    return draw(list.size(), false, farPlane, litByAtmosphere(s, altitude), sun, stats);
+    const RenderSettings lit = litByAtmosphere(s, altitude);
+    const Built built = illuminate(list.size(), needsSunVolume(lit) ? sunGridFor(list, lit) : SunVolumeGrid{},
+                                   needsZenithVolume(lit) ? zenithGridFor(list) : SunVolumeGrid{}, lit, stats);
+    return draw(list.size(), false, farPlane, lit, built, stats);
   }
 
   Image renderCloudscape(const scene::CloudType& cloud, const scene::QualityPreset& q, const RenderSettings& s,
@@ -208,8 +230,10 @@ struct Renderer::Impl {
       stats->generateSeconds = clock.seconds();
       stats->validCells = g.cells;
     }
-    const bool sun = illuminate(g.count, needsSunVolume(s) ? sunGridFor(cloud, q, s) : SunVolumeGrid{}, s, stats);
-    return draw(g.count, alpha, g.farPlane, litByAtmosphere(s, 0.5f * (cloud.cloudBase + cloud.cloudTop)), sun, stats);
+    const RenderSettings lit = litByAtmosphere(s, 0.5f * (cloud.cloudBase + cloud.cloudTop));
+    const Built built = illuminate(g.count, needsSunVolume(lit) ? sunGridFor(cloud, q, lit) : SunVolumeGrid{},
+                                   needsZenithVolume(lit) ? zenithGridFor(cloud, q, lit) : SunVolumeGrid{}, lit, stats);
+    return draw(g.count, alpha, g.farPlane, lit, built, stats);
   }
 
   // --- atmosphere (issue 13): the sky pass, and the settings whose sun colour and ambient the
@@ -254,6 +278,31 @@ struct Renderer::Impl {
                                  s.view.lighting.sunDirection, kSunColumnsPerRadius * cloud.cellSize, kSunCascadesMax);
   }
   static constexpr float kSunColumnsPerRadius = 0.25f;  // column spacing in units of the particle radius
+
+  // The zenith volume's grids: the sun volume's with vertical columns, twice as far apart and half
+  // as many per side (the ambient varies over a particle's size, not over its rim).
+  static SunVolumeGrid zenithGridFor(const std::vector<scene::Particle>& list) {
+    glm::vec3 lo(0.0f), hi(0.0f);
+    float smallest = 1.0f;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const scene::Particle& p = list[i];
+      const float reach = std::max({p.radii.x, p.radii.y, p.radii.z});
+      lo = i == 0 ? p.center - reach : glm::min(lo, p.center - reach);
+      hi = i == 0 ? p.center + reach : glm::max(hi, p.center + reach);
+      smallest = std::min(i == 0 ? reach : smallest, std::min({p.radii.x, p.radii.y, p.radii.z}));
+    }
+    return sunVolumeGridForBounds(lo, hi, kZenith, kZenithColumnsPerRadius * smallest, kZenithColumns, kZenithSlices);
+  }
+  static SunVolumeGrid zenithGridFor(const scene::CloudType& cloud, const scene::QualityPreset& q,
+                                     const RenderSettings& s) {
+    const scene::GridParameters g = scene::gridParameters(cloud, q);
+    const glm::vec2 r = scene::grid::cgMaxRadii(q.rings - 1, g.g0, g.g1, g.g2);
+    return sunVolumeGridForLayer(s.view.camera.eye, cloud.cloudBase - r.y, cloud.cloudTop + r.y, kZenith,
+                                 kZenithColumnsPerRadius * cloud.cellSize, kSunCascadesMax, kZenithColumns);
+  }
+  static constexpr glm::vec3 kZenith{0.0f, 1.0f, 0.0f};
+  static constexpr float kZenithColumnsPerRadius = 0.5f;
+  static constexpr int kZenithColumns = 128, kZenithSlices = 64;
 
   scene::CpuGeneration generateOnGpu(const scene::CloudType& cloud, const scene::QualityPreset& q,
                                      const RenderSettings& s) {

@@ -97,6 +97,9 @@ scene::Lighting SkyPass::cloudLighting(const scene::Lighting& lighting, float al
                  glsl::transmittanceToSun(atmosphere_, texture(transmittance_), r, muS, glsl::CLOUDLUT_SUN_ANGULAR_RADIUS);
   out.skyColor = lighting.sunColor * glsl::skyIrradianceLookup(atmosphere_, texture(irradiance_), r, muS) *
                  (4.0f * glsl::CLOUDLUT_INV_4PI);
+  // Below the horizon the ground returns its albedo times the sky's irradiance (Lambertian:
+  // radiance albedo·E/π, so albedo times skyColor); its return of direct sunlight is left out.
+  out.skyBelow = atmosphere_.groundAlbedo;
   return out;
 }
 

@@ -45,9 +45,10 @@ class SkyPass {
 
   // The lighting of clouds at altitude `altitude` (m above the ground): the sun's colour times
   // the atmosphere's transmittance toward it, and as the ambient sky radiance the sky's
-  // irradiance on a horizontal surface over π (a uniform sky of that irradiance), times the sun's
-  // colour; with `orders` 1 the irradiance of single scattering is not separated, so the table's
-  // is used as baked.
+  // irradiance on a horizontal surface over π (the radiance of a uniform sky of that irradiance
+  // above the horizon), times the sun's colour, and below the horizon the ground albedo times that
+  // (Lighting::skyBelow); with `orders` 1 the irradiance of single scattering is not separated, so
+  // the table's is used as baked.
   scene::Lighting cloudLighting(const scene::Lighting& lighting, float altitude) const;
 
   // Composites `image` (the clouds: premultiplied radiance, opacity, distance) under the sky in

@@ -102,15 +102,18 @@ std::size_t SunVolume::build(const SunVolumeGrid& grid, std::size_t count, GLuin
   return overflow;
 }
 
-void SunVolume::bind(const ProgramUniforms& uniforms, int unit) const {
+void SunVolume::bind(const ProgramUniforms& uniforms, int unit, const std::string& prefix) const {
+  const auto name = [&](const char* suffix) { return prefix + suffix; };
   gl_.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
   gl_.BindTexture(GL_TEXTURE_3D, texture_);
-  uniforms.set("uSunTau", unit);
-  uniforms.set("uSunCascades", texture_ ? grid_.cascades : 0);
-  gl_.Uniform3i(uniforms.location("uSunDims"), grid_.dims.x, grid_.dims.y, grid_.dims.z);
-  gl_.UniformMatrix4fv(uniforms.location("uSunToGrid"), grid_.cascades, GL_FALSE, glm::value_ptr(grid_.toGrid[0]));
-  gl_.UniformMatrix4fv(uniforms.location("uSunToWorld"), grid_.cascades, GL_FALSE, glm::value_ptr(grid_.toWorld[0]));
-  uniforms.set("uSunColumns", grid_.sun);
+  uniforms.set(name("Tau").c_str(), unit);
+  uniforms.set(name("Cascades").c_str(), texture_ ? grid_.cascades : 0);
+  gl_.Uniform3i(uniforms.location(name("Dims").c_str()), grid_.dims.x, grid_.dims.y, grid_.dims.z);
+  gl_.UniformMatrix4fv(uniforms.location(name("ToGrid").c_str()), grid_.cascades, GL_FALSE,
+                       glm::value_ptr(grid_.toGrid[0]));
+  gl_.UniformMatrix4fv(uniforms.location(name("ToWorld").c_str()), grid_.cascades, GL_FALSE,
+                       glm::value_ptr(grid_.toWorld[0]));
+  uniforms.set(name("Columns").c_str(), grid_.sun);
 }
 
 std::vector<float> SunVolume::readBack() const {

@@ -5,8 +5,11 @@
 // optical-depth table's chords (seed §4.1) — the same mean densities the shading uses. The
 // particle pass samples it where each fragment's light is scattered (sunlight per shading point
 // instead of the seed's per particle, §5.3) and along the column through that point (the cloud
-// around it, for multiple scattering); a ground can sample it for the clouds' shadow.
+// around it, for multiple scattering); a ground can sample it for the clouds' shadow. The renderer
+// builds it a second time with vertical columns (the zenith volume): the optical depth of the cloud
+// above and below every point, for the ambient under a sky from above (docs/LIGHTING.md).
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -43,8 +46,9 @@ class SunVolume {
 
   // Binds the volume texture to `unit` and sets the sampling uniforms of
   // sun_volume_sampling.glsl (uSunTau, uSunCascades, uSunDims, uSunToGrid[], uSunToWorld[],
-  // uSunColumns) on the program in use.
-  void bind(const ProgramUniforms& uniforms, int unit) const;
+  // uSunColumns) on the program in use; `prefix` names another set of them (the zenith volume's
+  // "uZenith", zenith_volume_sampling.glsl), whose missing uniforms are left alone.
+  void bind(const ProgramUniforms& uniforms, int unit, const std::string& prefix = "uSun") const;
 
   // The volume read back: τ per node, cascade after cascade (each Nu × Nv × Nw, u fastest).
   std::vector<float> readBack() const;

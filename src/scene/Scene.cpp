@@ -346,6 +346,7 @@ View resolveView(const Scene& scene, const ViewSettings& commandLine) {
   view.lighting.sunDirection = glm::normalize(sun);
   view.lighting.sunColor = pick(commandLine.sunColor, f.sunColor, view.lighting.sunColor);
   view.lighting.skyColor = pick(commandLine.skyColor, f.skyColor, view.lighting.skyColor);
+  view.lighting.skyBelow = glm::vec3(pick(commandLine.skyBelow, f.skyBelow, 1.0f));
   view.lighting.atmosphere = pick(commandLine.atmosphere, f.atmosphere, false);
   view.lighting.atmosphereParameters =
       pick(commandLine.atmosphereParameters, f.atmosphereParameters, glsl::defaultAtmosphere());

@@ -49,6 +49,7 @@ struct ViewSettings {
   std::optional<float> fovDeg;                   // vertical field of view, degrees
   std::optional<glm::vec3> sunDirection;         // toward the sun (normalised on use)
   std::optional<glm::vec3> sunColor, skyColor;
+  std::optional<float> skyBelow;                 // Lighting::skyBelow, the same in every channel
   // "sky": {"model": "atmosphere", ...}: the precomputed atmosphere and its parameters
   // (scene/AtmosphereJson.h) instead of the uniform sky colour.
   std::optional<bool> atmosphere;
@@ -91,6 +92,11 @@ struct Lighting {
   glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};  // unit, toward the sun
   glm::vec3 sunColor{1.0f};                  // sun irradiance per channel
   glm::vec3 skyColor{0.05f, 0.08f, 0.15f};   // sky radiance per channel (ambient and background)
+  // Radiance of the sky below the horizon (directions with y < 0: what the ground returns) per
+  // channel, as a fraction of skyColor: 1 is the uniform sky (the default), less a sky from above
+  // (--sky-below; the atmosphere sets the ground albedo, render/SkyPass.h). The cloud lighting's
+  // ambient and the path tracer take it; the background is skyColor.
+  glm::vec3 skyBelow{1.0f};
   // The sky model: a uniform sky of skyColor, or the atmosphere (then the sun colour is the
   // sunlight above the atmosphere and skyColor is not used; render/SkyPass.h).
   bool atmosphere = false;

@@ -1,7 +1,8 @@
 // particle.frag.glsl — shades one particle along one view ray with the tables (seed §4.4, §5.4).
 // Preceded by cloudlut_geometry.glsl, cloudlut_phase.glsl, cloudlut_sampling.glsl,
 // cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl,
-// volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl and sun_volume_sampling.glsl.
+// volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl, sun_volume_sampling.glsl and
+// zenith_volume_sampling.glsl.
 // Two lighting models (render/RenderTypes.h, docs/LIGHTING.md): the seed's (uLighting 0) and the
 // cloud model (uLighting 1), whose equations are cloudlut_shading.glsl's.
 //
@@ -13,7 +14,8 @@
 uniform vec3 uEye;
 uniform vec3 uSunDirection;  // world, unit, toward the sun
 uniform vec3 uSunColor;
-uniform vec3 uSkyColor;
+uniform vec3 uSkyColor;       // sky radiance above the horizon (and the seed's ambient)
+uniform vec3 uSkyBelowColor;  // sky radiance below the horizon, the ground's return (cloud lighting)
 uniform int uTerms;          // bit 0 single, bit 1 multiple, bit 2 ambient
 
 uniform sampler3D uOpticalDepth;
@@ -144,11 +146,20 @@ void main() {
       }
     }
   }
-  // Ambient: the sky's radiance, scaled by the crease factor of the first matter (seed), or by
-  // the opacity alone, the exact value under a uniform sky (cloud).
+  // Ambient: the sky's radiance, scaled by the crease factor of the first matter (seed); or
+  // (cloud) the opacity times the field at the mean scattering point under a sky of uSkyColor
+  // above the horizon and uSkyBelowColor below it, from the cloud's vertical optical depths there
+  // (the zenith volume; layeredSkyAmbient, = uniformSkyAmbient · sky when the two are equal).
   vec3 ambient = vec3(0.0);
-  if ((uTerms & 4) != 0)
-    ambient = uSkyColor * (uLighting == 0 ? ambientScale(transmittance, od.y) : uniformSkyAmbient(tau));
+  if ((uTerms & 4) != 0) {
+    if (uLighting == 0) {
+      ambient = uSkyColor * ambientScale(transmittance, od.y);
+    } else {
+      vec2 vertical = zenithOpticalDepths(xMean);
+      float share = skyAboveShare(vertical.x, vertical.y, uLaterAsymmetry, dir.y);
+      ambient = layeredSkyAmbient(tau, share, uSkyColor, uSkyBelowColor);
+    }
+  }
 
   vec3 radiance = uSunColor * (sunlight * single + multiple) + ambient;
   oColor = vec4(radiance, transmittance);
