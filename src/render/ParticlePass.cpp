@@ -16,7 +16,7 @@ const std::vector<std::string> kVertexFiles = {"particle_common.glsl", "particle
 const std::vector<std::string> kFragmentFiles = {"cloudlut_geometry.glsl", "cloudlut_phase.glsl",
                                                  "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
                                                  "particle_common.glsl", "volume_fragments.glsl",
-                                                 "sun_volume.glsl", "sun_volume_chord.glsl",
+                                                 "sun_volume.glsl", "sun_volume_chord.glsl", "cascade_columns.glsl",
                                                  "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
                                                  "cloudlut_detail_noise.glsl",
                                                  "particle_detail.glsl", "particle.frag.glsl"};

@@ -1,6 +1,7 @@
 // sun_volume_sampling.glsl — reading the sun optical-depth volume (sun_volume.glsl) in a shader
-// (GLSL only). Bind it with SunVolume::bind. Requires SUN_CASCADES_MAX, sun_volume.glsl and
-// sun_volume_chord.glsl. With uSunCascades = 0 (no volume built) every point is unshadowed.
+// (GLSL only). Bind it with SunVolume::bind. Requires SUN_CASCADES_MAX, sun_volume.glsl,
+// sun_volume_chord.glsl and cascade_columns.glsl. With uSunCascades = 0 (no volume built) every
+// point is unshadowed.
 
 uniform sampler3D uSunTau;       // R32F, cascades stacked along the depth; S, T clamp to border 0
 uniform int uSunCascades;
@@ -15,12 +16,8 @@ uniform vec3 uSunColumns;        // unit direction of the columns (the sun, rais
 float sunOpticalDepth(vec3 x) {
   for (int k = 0; k < uSunCascades; ++k) {
     vec3 g = (uSunToGrid[k] * vec4(x, 1.0)).xyz;
-    vec2 inner = vec2(uSunDims.xy) - 1.0;
-    if (g.x < 0.0 || g.y < 0.0 || g.x > inner.x || g.y > inner.y) continue;
-    float w = clamp(g.z, 0.0, float(uSunDims.z) - 1.0);
-    vec3 tc = vec3((g.xy + 0.5) / vec2(uSunDims.xy),
-                   (float(k * uSunDims.z) + w + 0.5) / float(uSunDims.z * uSunCascades));
-    return texture(uSunTau, tc).r;
+    if (!cascadeHoldsColumns(g, uSunDims)) continue;
+    return cascadeSliceAndFarEnd(uSunTau, uSunDims, uSunCascades, k, g).x;
   }
   return 0.0;
 }
@@ -38,13 +35,10 @@ vec4 sunOpticalDepths(vec3 x, vec3 centre, mat3 toParticle, float rho, sampler3D
                       float sigma) {
   for (int k = 0; k < uSunCascades; ++k) {
     vec3 g = (uSunToGrid[k] * vec4(x, 1.0)).xyz;
-    vec2 inner = vec2(uSunDims.xy) - 1.0;
-    if (g.x < 0.0 || g.y < 0.0 || g.x > inner.x || g.y > inner.y) continue;
+    if (!cascadeHoldsColumns(g, uSunDims)) continue;
+    vec2 totalAndColumn = cascadeSliceAndFarEnd(uSunTau, uSunDims, uSunCascades, k, g);
+    float total = totalAndColumn.x, column = totalAndColumn.y;
     float w = clamp(g.z, 0.0, float(uSunDims.z) - 1.0);
-    vec2 xy = (g.xy + 0.5) / vec2(uSunDims.xy);
-    float depth = float(uSunDims.z * uSunCascades);
-    float total = texture(uSunTau, vec3(xy, (float(k * uSunDims.z) + w + 0.5) / depth)).r;
-    float column = texture(uSunTau, vec3(xy, (float(k * uSunDims.z) + 0.5) / depth)).r;
     float dwds = (uSunToGrid[k] * vec4(uSunColumns, 0.0)).z;
     vec2 base = floor(g.xy), f = g.xy - base;
     float w0 = min(floor(w), float(uSunDims.z) - 2.0), fw = w - w0;

@@ -2,7 +2,7 @@
 // the sun volume's structure (sun_volume.glsl, render/SunVolume) built a second time with its
 // columns vertical (toward world +y), so that a node holds the optical depth of the cloud above it
 // and slice 0 the whole column. Bind it with SunVolume::bind(uniforms, unit, "uZenith"). Requires
-// SUN_CASCADES_MAX. With uZenithCascades = 0 (no volume built) no cloud lies above or below.
+// SUN_CASCADES_MAX and cascade_columns.glsl. With uZenithCascades = 0 (no volume built) no cloud lies above or below.
 
 uniform sampler3D uZenithTau;    // R32F, cascades stacked along the depth; S, T clamp to border 0
 uniform int uZenithCascades;
@@ -15,14 +15,9 @@ uniform mat4 uZenithToGrid[SUN_CASCADES_MAX];
 vec2 zenithOpticalDepths(vec3 x) {
   for (int k = 0; k < uZenithCascades; ++k) {
     vec3 g = (uZenithToGrid[k] * vec4(x, 1.0)).xyz;
-    vec2 inner = vec2(uZenithDims.xy) - 1.0;
-    if (g.x < 0.0 || g.y < 0.0 || g.x > inner.x || g.y > inner.y) continue;
-    float w = clamp(g.z, 0.0, float(uZenithDims.z) - 1.0);
-    vec2 xy = (g.xy + 0.5) / vec2(uZenithDims.xy);
-    float depth = float(uZenithDims.z * uZenithCascades);
-    float above = texture(uZenithTau, vec3(xy, (float(k * uZenithDims.z) + w + 0.5) / depth)).r;
-    float column = texture(uZenithTau, vec3(xy, (float(k * uZenithDims.z) + 0.5) / depth)).r;
-    return vec2(above, max(column - above, 0.0));
+    if (!cascadeHoldsColumns(g, uZenithDims)) continue;
+    vec2 aboveAndColumn = cascadeSliceAndFarEnd(uZenithTau, uZenithDims, uZenithCascades, k, g);
+    return vec2(aboveAndColumn.x, max(aboveAndColumn.y - aboveAndColumn.x, 0.0));
   }
   return vec2(0.0);
 }
