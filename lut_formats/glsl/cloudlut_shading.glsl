@@ -159,19 +159,23 @@ CLOUDLUT_FN float cloudSphereDensity(float tauColumn, float sigma) { return tauC
 
 // The point on that sphere where the column splits it (cos θS = (tauAway − tauSun)/tauColumn:
 // the sub-solar point when no cloud lies toward the sun, the anti-solar point when none lies
-// behind), turned toward the camera about the sun direction, so that the view ray `dir` enters
-// the sphere there (kept at least slightly facing the camera). Unit vector, world space; the
-// scattering tables depend only on the angles between this point, `dir` and `sun`.
+// behind), on the great circle through the sun and the camera, on the camera's side, so that the
+// view ray `dir` enters the sphere there. Where that point faces away from the camera (a view
+// toward the sun at a point with little cloud toward it), the circle's nearest point that faces
+// the camera at least slightly (cos 88.85° = 0.02) stands in: the angle from the sun is clamped
+// to within 88.85° of the camera's, so the point moves continuously with θS along the limb. (An
+// earlier push toward the camera sent it through the sphere's centre, a hard edge in the image.)
+// Unit vector, world space; the scattering tables depend only on its angles to `dir` and `sun`.
 CLOUDLUT_FN vec3 cloudSphereEntry(float tauSun, float tauColumn, vec3 dir, vec3 sun) {
+  const float kLimb = 1.55079637f;  // acos(0.02), radians
   float cosS = clamp((tauColumn - 2.0f * tauSun) / max(tauColumn, 1e-6f), -1.0f, 1.0f);
   vec3 toCamera = -dir;
   vec3 t = toCamera - dot(toCamera, sun) * sun;
   if (dot(t, t) < 1e-8f) t = cross(sun, abs(sun.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f));
   t = normalize(t);
-  vec3 S = cosS * sun + sqrt(max(1.0f - cosS * cosS, 0.0f)) * t;
-  float facing = dot(S, toCamera);
-  if (facing < 0.02f) S = normalize(S + (0.02f - facing) * toCamera);
-  return S;
+  float cameraAngle = azimuth(dot(toCamera, t), dot(toCamera, sun));  // [0, π] from the sun
+  float angle = clamp(acos(cosS), cameraAngle - kLimb, cameraAngle + kLimb);
+  return cos(angle) * sun + sin(angle) * t;
 }
 
 // Weight of the cloud-scale sphere against the particle's own (dimensionless, [0, 1]): the

@@ -212,6 +212,9 @@ int runRender(int argc, char** argv) {
                     stats.volumeTiles, stats.volumeRedrawnTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0,
                     stats.fragments,
                     stats.fragmentOverflow, stats.truncatedPixels, render::kMaxSegmentsPerPixel);
+      if (stats.sunFootprintOverflow > 0)
+        std::printf("  sun volume: %zu particle-cascade pair(s) over the footprint limit, left to a coarser cascade\n",
+                    stats.sunFootprintOverflow);
     }
   }
   return kExitOk;

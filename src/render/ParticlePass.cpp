@@ -13,13 +13,11 @@ namespace cloudlut::render {
 namespace {
 
 const std::vector<std::string> kVertexFiles = {"particle_common.glsl", "particle.vert.glsl"};
-const std::vector<std::string> kFragmentFiles = {"cloudlut_geometry.glsl", "cloudlut_phase.glsl",
-                                                 "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
-                                                 "particle_common.glsl", "volume_fragments.glsl",
-                                                 "sun_volume.glsl", "sun_volume_chord.glsl", "cascade_columns.glsl",
-                                                 "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
-                                                 "cloudlut_detail_noise.glsl",
-                                                 "particle_detail.glsl", "particle.frag.glsl"};
+const std::vector<std::string> kFragmentFiles = {
+    "cloudlut_geometry.glsl", "cloudlut_phase.glsl", "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
+    "particle_common.glsl", "volume_fragments.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
+    "cascade_columns.glsl", "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
+    "cloudlut_detail_noise.glsl", "particle_detail.glsl", "particle.frag.glsl"};
 constexpr GLsizei kBoxVertices = 36;  // 6 faces × 2 triangles (particle.vert.glsl)
 constexpr int kSunVolumeUnit = 3;      // texture unit after the three tables (ShadingTables)
 constexpr int kZenithVolumeUnit = 4;

@@ -310,16 +310,18 @@ struct Renderer::Impl {
     return generation.readBack(generation.run(cloud, q, s, false, particles.tables().referenceRadius()), cloud, q, s);
   }
 
-  Renderer::SunVolumeSnapshot sunVolumeOf(const std::vector<scene::Particle>& list, const RenderSettings& s) {
+  Renderer::SunVolumeSnapshot sunVolumeOf(const std::vector<scene::Particle>& list, const RenderSettings& s,
+                                          const SunVolumeGrid* given) {
     validate(s);
     std::vector<std::size_t> order(list.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     upload.upload(list, order, s.view.camera.eye, glm::normalize(s.view.lighting.sunDirection));
-    const SunVolumeGrid grid = sunGridFor(list, s);
-    if (!list.empty())
-      sunVolume.build(grid, list.size(), particles.tables().opticalDepthTexture(), particles.tables().opticalDepthDims(),
-                      particles.tables().unitOpticalRadius(), false);
-    return {grid, list.empty() ? std::vector<float>{} : sunVolume.readBack()};
+    const SunVolumeGrid grid = given ? *given : sunGridFor(list, s);
+    if (list.empty()) return {grid, {}, 0};
+    const std::size_t skipped =
+        sunVolume.build(grid, list.size(), particles.tables().opticalDepthTexture(),
+                        particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), true);
+    return {grid, sunVolume.readBack(), skipped};
   }
 
   std::vector<float> sunlight(const std::vector<scene::Particle>& list, const RenderSettings& s) {
@@ -365,8 +367,8 @@ std::vector<float> Renderer::sunlight(const std::vector<scene::Particle>& partic
 }
 
 Renderer::SunVolumeSnapshot Renderer::sunVolume(const std::vector<scene::Particle>& particles,
-                                                const RenderSettings& settings) {
-  return impl_->sunVolumeOf(particles, settings);
+                                                const RenderSettings& settings, const SunVolumeGrid* grid) {
+  return impl_->sunVolumeOf(particles, settings, grid);
 }
 
 }  // namespace cloudlut::render

@@ -72,13 +72,18 @@ class Renderer {
   std::vector<float> sunlight(const std::vector<scene::Particle>& particles, const RenderSettings& settings);
 
   // The sun optical-depth volume the cloud lighting builds for `particles` under `settings`
-  // (docs/LIGHTING.md): its grid and the optical depth toward the sun at every node
-  // (dimensionless; SunVolume::readBack's order), for tests and tools.
+  // (docs/LIGHTING.md), over `grid` when given (e.g. a cloudscape's cascades,
+  // sunVolumeGridForLayer), else over the grid a particle scene gets: the grid, the optical depth
+  // toward the sun at every node (dimensionless; SunVolume::readBack's order, cascades stacked
+  // along the slices) and the particle-cascade pairs skipped for their footprint, for tests and
+  // tools.
   struct SunVolumeSnapshot {
     SunVolumeGrid grid;
     std::vector<float> tau;
+    std::size_t footprintOverflow = 0;
   };
-  SunVolumeSnapshot sunVolume(const std::vector<scene::Particle>& particles, const RenderSettings& settings);
+  SunVolumeSnapshot sunVolume(const std::vector<scene::Particle>& particles, const RenderSettings& settings,
+                              const SunVolumeGrid* grid = nullptr);
 
  private:
   struct Impl;

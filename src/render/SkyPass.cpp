@@ -51,8 +51,9 @@ SkyPass::SkyPass(const GlFunctions& gl, const GlContext& context)
   viewProgram_ = linkComputeProgram(gl, withFiles(kAtmosphereFiles, {"sky_view.comp.glsl"}), "");
   aerialProgram_ = linkComputeProgram(gl, withFiles(kAtmosphereFiles, {"sky_aerial_slices.glsl", "sky_aerial.comp.glsl"}), aerial);
   const std::vector<std::string> sunFiles = withFiles(
-      kAtmosphereFiles, {"cloudlut_sampling.glsl", "cloudlut_shading.glsl", "sun_volume.glsl", "sun_volume_chord.glsl", "cascade_columns.glsl",
-                         "sun_volume_sampling.glsl", "sky_aerial_slices.glsl", "sky_shafts.glsl"});
+      kAtmosphereFiles, {"cloudlut_sampling.glsl", "cloudlut_shading.glsl", "sun_volume.glsl",
+                         "sun_volume_chord.glsl", "cascade_columns.glsl", "sun_volume_sampling.glsl",
+                         "sky_aerial_slices.glsl", "sky_shafts.glsl"});
   shaftsProgram_ = linkComputeProgram(gl, withFiles(sunFiles, {"sky_shafts.comp.glsl"}),
                                       aerial + glslDefine("SHAFT_PIECES", kShaftPieces) + SunVolume::samplingDefines());
   compositeProgram_ = linkComputeProgram(gl, withFiles(sunFiles, {"sky_composite.comp.glsl"}),

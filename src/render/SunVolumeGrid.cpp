@@ -38,6 +38,44 @@ glm::mat4 gridMap(int a, const glm::vec3& l, float h0, float h1, float p0, float
   return m;
 }
 
+// Where the sun ray (unit l, l.y ≠ 0) through x crosses the plane y = y0: its (x, z), world units.
+glm::vec2 layerIntercept(const glm::vec3& x, const glm::vec3& l, float y0) {
+  const float s = (y0 - x.y) / l.y;
+  return glm::vec2(x.x + s * l.x, x.z + s * l.z);
+}
+
+// The affine map of one cascade over a horizontal layer [h0, h1]: slices along y, columns indexed
+// by where their sun ray crosses y = h0, in a frame turned to the sun's azimuth h (unit, in the
+// x–z plane): along = (intercept · h − o.x)/(du/|l_y|), across = (intercept · h⊥ − o.y)/du, with
+// h⊥ = (−h_z, h_x). Two sun rays whose intercepts are d apart along h are d·|l_y| apart across
+// the beam, so the columns stretched by 1/|l_y| along h are du apart across the beam in both
+// directions: a particle's shadow covers about π(r/du)² columns whatever the sun's elevation
+// (a square grid on the plane would need 1/|l_y| times as many for a low sun). w as in gridMap.
+glm::mat4 layerGridMap(const glm::vec3& l, const glm::vec2& h, float h0, float h1, const glm::vec2& o, float du,
+                       float dh) {
+  const float duAlong = du / std::abs(l.y);
+  const float slopeAlong = (h.x * l.x + h.y * l.z) / l.y;  // d(intercept · h)/dy = −slopeAlong
+  const float slopeAcross = (-h.y * l.x + h.x * l.z) / l.y;
+  glm::mat4 m(0.0f);  // m[column][row]; world x, y, z are columns 0, 1, 2
+  m[0][0] = h.x / duAlong;
+  m[2][0] = h.y / duAlong;
+  m[1][0] = -slopeAlong / duAlong;
+  m[3][0] = (slopeAlong * h0 - o.x) / duAlong;
+  m[0][1] = -h.y / du;
+  m[2][1] = h.x / du;
+  m[1][1] = -slopeAcross / du;
+  m[3][1] = (slopeAcross * h0 - o.y) / du;
+  if (l.y > 0.0f) {
+    m[1][2] = 1.0f / dh;
+    m[3][2] = -h0 / dh;
+  } else {
+    m[1][2] = -1.0f / dh;
+    m[3][2] = h1 / dh;
+  }
+  m[3][3] = 1.0f;
+  return m;
+}
+
 void setCascade(SunVolumeGrid& g, int k, const glm::mat4& toGrid) {
   g.toGrid[k] = toGrid;
   g.toWorld[k] = glm::inverse(toGrid);
@@ -86,8 +124,9 @@ SunVolumeGrid sunVolumeGridForBounds(const glm::vec3& lo, const glm::vec3& hi, c
 SunVolumeGrid sunVolumeGridForLayer(const glm::vec3& eye, float yLo, float yHi, const glm::vec3& sunIn, float spacing0,
                                     int cascades, int columns, int slices, float ratio, float minElevation) {
   glm::vec3 l = glm::normalize(sunIn);
+  const float horizontal = glm::length(glm::vec2(l.x, l.z));
+  const glm::vec2 h = horizontal > 1e-6f ? glm::vec2(l.x, l.z) / horizontal : glm::vec2(1.0f, 0.0f);
   if (std::abs(l.y) < minElevation) {
-    const glm::vec2 h = glm::length(glm::vec2(l.x, l.z)) > 0 ? glm::normalize(glm::vec2(l.x, l.z)) : glm::vec2(1, 0);
     const float y = l.y < 0.0f ? -minElevation : minElevation;
     const float r = std::sqrt(1.0f - y * y);
     l = glm::vec3(h.x * r, y, h.y * r);
@@ -98,16 +137,14 @@ SunVolumeGrid sunVolumeGridForLayer(const glm::vec3& eye, float yLo, float yHi, 
   g.sun = l;
   g.dims = glm::ivec3(columns, columns, slices + 1);
   const float dh = (yHi - yLo) / static_cast<float>(slices);
-  // The eye's column at mid-layer: the sheared coordinates of the point of the sun ray through
-  // the eye at y = (yLo + yHi)/2, relative to h0 = yLo.
-  const float mid = 0.5f * (yLo + yHi);
-  const glm::vec3 atMid = eye + l * ((mid - eye.y) / l.y);
-  const float pc = atMid.z - (mid - yLo) * l.z / l.y;  // axis b = z (a = y, b = (1+1)%3 = 2)
-  const float qc = atMid.x - (mid - yLo) * l.x / l.y;  // axis c = x
+  // The eye's column: where the sun ray through the eye crosses the layer's bottom, y = yLo.
+  const glm::vec2 base = layerIntercept(eye, l, yLo);
+  const glm::vec2 centre(glm::dot(base, h), glm::dot(base, glm::vec2(-h.y, h.x)));
+  const float stretch = 1.0f / std::abs(l.y);  // along the sun's azimuth (see layerGridMap)
   float du = spacing0;
   for (int k = 0; k < g.cascades; ++k, du *= ratio) {
     const float halfWidth = 0.5f * du * static_cast<float>(columns - 1);
-    setCascade(g, k, gridMap(1, l, yLo, yHi, pc - halfWidth, qc - halfWidth, du, dh));
+    setCascade(g, k, layerGridMap(l, h, yLo, yHi, centre - glm::vec2(stretch, 1.0f) * halfWidth, du, dh));
   }
   return g;
 }

@@ -27,9 +27,11 @@ SunVolumeGrid sunVolumeGridForBounds(const glm::vec3& lo, const glm::vec3& hi, c
                                      int maxColumns = 256, int maxSlices = 128);
 
 // Nested cascades around a camera for a cloud layer y ∈ [yLo, yHi] (world units): slices along
-// y (`slices` + 1 of them, shared by the cascades), `columns`² columns per cascade, cascade c
-// spaced spacing0 · ratio^c and centred on the column through the eye at mid-layer. A sun within
-// minElevation of the horizon is raised to it for the columns (the layer's shear stays finite).
+// y (`slices` + 1 of them, shared by the cascades), `columns`² columns per cascade, centred on the
+// column through the eye. Cascade c's columns are spacing0 · ratio^c apart across the sun's beam:
+// along the sun's azimuth they are that over |l_y| apart on the layer (a low sun's shadows are
+// long, not wide). A sun within minElevation of the horizon is raised to it for the columns (the
+// layer's shear stays finite).
 SunVolumeGrid sunVolumeGridForLayer(const glm::vec3& eye, float yLo, float yHi, const glm::vec3& sun, float spacing0,
                                     int cascades, int columns = 256, int slices = 32, float ratio = 3.0f,
                                     float minElevation = 0.05f);

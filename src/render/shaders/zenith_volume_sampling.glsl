@@ -2,7 +2,8 @@
 // the sun volume's structure (sun_volume.glsl, render/SunVolume) built a second time with its
 // columns vertical (toward world +y), so that a node holds the optical depth of the cloud above it
 // and slice 0 the whole column. Bind it with SunVolume::bind(uniforms, unit, "uZenith"). Requires
-// SUN_CASCADES_MAX and cascade_columns.glsl. With uZenithCascades = 0 (no volume built) no cloud lies above or below.
+// SUN_CASCADES_MAX and cascade_columns.glsl. With uZenithCascades = 0 (no volume built) no cloud
+// lies above or below.
 
 uniform sampler3D uZenithTau;    // R32F, cascades stacked along the depth; S, T clamp to border 0
 uniform int uZenithCascades;
