@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include <glm/geometric.hpp>
 
@@ -51,21 +52,36 @@ double integratedSunDepth(const std::vector<scene::Particle>& particles, const R
   return tau;
 }
 
+// The renderer both tests build volumes with: the reference particle's optical-depth table
+// (64×32×64×32) and synthetic scattering tables, which the sun volume does not read.
+struct SunVolumeRig {
+  TempDir tmp;
+  const Medium medium;
+  const ReferenceParticle ref{medium.model, medium.seed};
+  io::LutSet luts;
+  std::unique_ptr<render::GlContext> context;
+  std::unique_ptr<render::Renderer> renderer;
+
+  SunVolumeRig() {
+    bake::OpticalDepthSettings ods;
+    ods.dims = {64, 32, 64, 32};
+    const Table4D od = bake::bakeOpticalDepth(ref, ods);
+    const Table4D l1 = syntheticSingle(), lm = syntheticMultiple();
+    writeLutSet(tmp / "luts", {&od, &l1, &lm});
+    luts = io::readLutSet(tmp / "luts");
+    context = render::createHeadlessContext();
+    renderer = std::make_unique<render::Renderer>(*context, luts);
+  }
+};
+
 }  // namespace
 
 TEST_CASE("sun volume: optical depth toward the sun matches the density integrated along the sun rays",
           "[render][lighting]") {
-  TempDir tmp;
-  const Medium medium;
-  const ReferenceParticle ref(medium.model, medium.seed);
-  bake::OpticalDepthSettings ods;
-  ods.dims = {64, 32, 64, 32};
-  const Table4D od = bake::bakeOpticalDepth(ref, ods);
-  const Table4D l1 = syntheticSingle(), lm = syntheticMultiple();
-  writeLutSet(tmp / "luts", {&od, &l1, &lm});
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  auto context = render::createHeadlessContext();
-  render::Renderer renderer(*context, luts);
+  SunVolumeRig rig;
+  const Medium& medium = rig.medium;
+  const ReferenceParticle& ref = rig.ref;
+  render::Renderer& renderer = *rig.renderer;
 
   // Three particles in a row under a slanted sun, one rotated ellipsoid, so that columns cross
   // one, two or three of them.
@@ -117,17 +133,10 @@ TEST_CASE("sun volume: optical depth toward the sun matches the density integrat
 
 TEST_CASE("sun volume: a low sun's cascades over a cloud layer hold every particle and match the integration",
           "[render][lighting]") {
-  TempDir tmp;
-  const Medium medium;
-  const ReferenceParticle ref(medium.model, medium.seed);
-  bake::OpticalDepthSettings ods;
-  ods.dims = {64, 32, 64, 32};
-  const Table4D od = bake::bakeOpticalDepth(ref, ods);
-  const Table4D l1 = syntheticSingle(), lm = syntheticMultiple();
-  writeLutSet(tmp / "luts", {&od, &l1, &lm});
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  auto context = render::createHeadlessContext();
-  render::Renderer renderer(*context, luts);
+  SunVolumeRig rig;
+  const Medium& medium = rig.medium;
+  const ReferenceParticle& ref = rig.ref;
+  render::Renderer& renderer = *rig.renderer;
 
   // A 4 × 4 patch of overlapping unit particles in a layer y ∈ [1.8, 5.2], one of them a rotated
   // ellipsoid, under a sun 4° above the horizon: on a square grid of 0.1-unit columns a particle's
