@@ -75,3 +75,18 @@ TEST_CASE("huge-page memory: 2 MiB-aligned, writable to its last byte, any size"
     }
   }
 }
+
+TEST_CASE("recycled arrays: a minimum size makes one array serve every smaller request", "[bake][pool]") {
+  RecycledArrays<float> pool;
+  pool.setMinimumSize(1000);
+  const float* first = nullptr;
+  {
+    auto a = pool.acquire(100);  // new: allocated at the minimum size
+    CHECK(a.size() == 1000);
+    first = a.data();
+  }
+  auto b = pool.acquire(900);  // fits the array the small request made
+  CHECK(b.data() == first);
+  auto c = pool.acquire(2000);  // larger than the minimum: its own size
+  CHECK(c.size() == 2000);
+}

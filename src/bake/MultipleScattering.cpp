@@ -160,6 +160,13 @@ FastMultipleScattering::FastMultipleScattering(const ScatteringSettings& setting
   const int D = sh->coarse.count(), F = sh->fine.count();
   sh->Mt = transposedFloat(phaseMatrix(sh->coarse, later), D, D);
   sh->M2t = transposedFloat(secondScatteringMatrix(sh->coarse, sh->fine, first, later), D, F);
+  // Every stencil array as large as the largest stencil (either grid, either rule): the pool
+  // then holds one array per slice running at once, not one per size (RecycledArrays.h).
+  const std::size_t cells = static_cast<std::size_t>(D) * static_cast<std::size_t>(
+                                std::max(res.radial * res.zenith, res.thinRadial * res.thinZenith));
+  const int points = std::max(TransportStencil::pointsPerRay(1.0, res.transportPoints),
+                              TransportStencil::pointsPerRay(kFarPanelMaxSigma, res.denseTransportPoints));
+  sh->stencils.setMinimumSize(cells * static_cast<std::size_t>(points));
   shared_ = std::move(sh);
 }
 

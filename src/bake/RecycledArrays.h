@@ -8,6 +8,7 @@
 //
 // T must be trivially copyable: arrays come back uninitialised (or holding an earlier user's
 // values), like `new T[n]`; n·sizeof(T) must not overflow.
+#include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <mutex>
@@ -53,7 +54,15 @@ class RecycledArrays {
     std::size_t size_ = 0;
   };
 
-  // The smallest free array of at least n elements, or a new one of exactly n.
+  // New arrays get at least n elements from now on: a pool whose users ask for several sizes
+  // (thin and dense density slices) then holds as many arrays as run at once, not one per size.
+  // Pages are mapped on first touch, so an array larger than its first user costs nothing more.
+  void setMinimumSize(std::size_t n) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    minimum_ = n;
+  }
+
+  // The smallest free array of at least n elements, or a new one of max(n, minimum size).
   Lease acquire(std::size_t n) {
     Lease lease;
     lease.pool_ = this;
@@ -68,6 +77,7 @@ class RecycledArrays {
         free_.erase(free_.begin() + static_cast<std::ptrdiff_t>(best));
         return lease;
       }
+      n = std::max(n, minimum_);
     }
     lease.data_ = allocateHugePageMemory(n * sizeof(T));
     lease.size_ = n;
@@ -82,6 +92,7 @@ class RecycledArrays {
 
   std::mutex mutex_;
   std::vector<std::pair<HugePageMemory, std::size_t>> free_;
+  std::size_t minimum_ = 0;
 };
 
 }  // namespace cloudlut::bake
