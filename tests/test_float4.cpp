@@ -62,3 +62,18 @@ TEST_CASE("Float4: atan2 per lane in every octant within 3e-7 of libm", "[float4
   CHECK(t[2] == Approx(3.1415927).epsilon(1e-7));
   CHECK(t[3] == Approx(-1.5707963).epsilon(1e-7));
 }
+
+TEST_CASE("Float4: sqrt per lane equals std::sqrt bit for bit", "[float4]") {
+  for (int i = 0; i < 100000; i += 4) {
+    Float4 x;
+    for (int k = 0; k < 4; ++k)
+      x[k] = static_cast<float>(std::ldexp(1.0 + (i + k) * 1e-5, (i + k) % 200 - 100));
+    const Float4 r = sqrtFloat4(x);
+    for (int k = 0; k < 4; ++k) REQUIRE(r[k] == std::sqrt(x[k]));
+  }
+  const Float4 edge = sqrtFloat4(Float4{0.0f, 1.0f, 4.0f, 1e-40f});
+  CHECK(edge[0] == 0.0f);
+  CHECK(edge[1] == 1.0f);
+  CHECK(edge[2] == 2.0f);
+  CHECK(edge[3] == std::sqrt(1e-40f));
+}

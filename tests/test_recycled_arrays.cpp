@@ -3,9 +3,12 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <cstdint>
+#include <cstring>
 #include <thread>
 #include <vector>
 
+#include "bake/HugePageBuffer.h"
 #include "bake/RecycledArrays.h"
 
 using cloudlut::bake::RecycledArrays;
@@ -58,4 +61,32 @@ TEST_CASE("recycled arrays: leases taken and returned from several threads", "[b
     });
   for (auto& th : threads) th.join();
   CHECK(ok);
+}
+
+TEST_CASE("huge-page memory: 2 MiB-aligned, writable to its last byte, any size", "[bake][pool]") {
+  const std::size_t mib = std::size_t{1} << 20;
+  for (const std::size_t bytes : {std::size_t{0}, std::size_t{1}, 3 * mib, 2 * mib + 7}) {
+    const cloudlut::bake::HugePageMemory m = cloudlut::bake::allocateHugePageMemory(bytes);
+    REQUIRE(m);
+    CHECK(reinterpret_cast<std::uintptr_t>(m.get()) % (std::uintptr_t{2} << 20) == 0);
+    if (bytes > 0) {
+      std::memset(m.get(), 0xab, bytes);
+      CHECK(static_cast<const unsigned char*>(m.get())[bytes - 1] == 0xab);
+    }
+  }
+}
+
+TEST_CASE("recycled arrays: a minimum size makes one array serve every smaller request", "[bake][pool]") {
+  RecycledArrays<float> pool;
+  pool.setMinimumSize(1000);
+  const float* first = nullptr;
+  {
+    auto a = pool.acquire(100);  // new: allocated at the minimum size
+    CHECK(a.size() == 1000);
+    first = a.data();
+  }
+  auto b = pool.acquire(900);  // fits the array the small request made
+  CHECK(b.data() == first);
+  auto c = pool.acquire(2000);  // larger than the minimum: its own size
+  CHECK(c.size() == 2000);
 }

@@ -14,14 +14,20 @@ namespace cloudlut::bake {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-// A unit vector at angle acos(mu) from d and azimuth psi about it (frame built from d).
-glm::dvec3 around(const glm::dvec3& d, double mu, double psi) {
-  const glm::dvec3 a = std::abs(d.x) < 0.7 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  const glm::dvec3 t = glm::normalize(glm::cross(d, a));
-  const glm::dvec3 b = glm::cross(d, t);
-  const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
-  return mu * d + s * (std::cos(psi) * t + std::sin(psi) * b);
-}
+// An orthonormal frame (d, t, b) about the unit vector d, built from d alone.
+struct FrameAbout {
+  glm::dvec3 d, t, b;
+  explicit FrameAbout(const glm::dvec3& dir) : d(dir) {
+    const glm::dvec3 a = std::abs(d.x) < 0.7 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    t = glm::normalize(glm::cross(d, a));
+    b = glm::cross(d, t);
+  }
+  // The unit vector at angle acos(mu) from d and azimuth ψ about it, given
+  // s = √max(0, 1 − mu²), cos ψ and sin ψ: mu d + s (cos ψ t + sin ψ b).
+  glm::dvec3 around(double mu, double s, double cosPsi, double sinPsi) const {
+    return mu * d + s * (cosPsi * t + sinPsi * b);
+  }
+};
 }  // namespace
 
 DirectionGrid::DirectionGrid(int thetaNodes, int phiNodes, double grading)
@@ -64,7 +70,8 @@ double DirectionGrid::phi(int b) const { return kPi * b / (nb_ - 1); }
 
 void DirectionGrid::locateTheta(double theta, int& a, double& f) const {
   const double x = std::clamp(theta / kPi, 0.0, 1.0);
-  const double xi = 1.0 - std::pow(1.0 - x, 1.0 / p_);
+  // (1 − x)^(1/p); pow(y, 1) is y exactly, so uniform grids skip the call
+  const double xi = 1.0 - (p_ == 1.0 ? 1.0 - x : std::pow(1.0 - x, 1.0 / p_));
   const double s = xi * (na_ - 1);
   a = std::min(static_cast<int>(s), na_ - 2);
   // Linear in θ within the cell (nodes are exact θ values).
@@ -103,16 +110,25 @@ std::vector<double> phaseMatrix(const DirectionGrid& grid, const std::function<d
       gam.push_back(gm);
       wgam.push_back(g.w[k] / (nGamma / 8) * 3.0 * kPi * xi * xi * std::sin(gm) * phase(std::cos(gm)));
     }
+  // What every row shares: cos γ and sin γ of the samples, cos ψ and sin ψ of the azimuths.
+  std::vector<double> mus(gam.size()), sines(gam.size()), cosPsi(nPsi), sinPsi(nPsi);
+  for (std::size_t s = 0; s < gam.size(); ++s) {
+    mus[s] = std::cos(gam[s]);
+    sines[s] = std::sqrt(std::max(0.0, 1.0 - mus[s] * mus[s]));
+  }
+  for (int k = 0; k < nPsi; ++k) {
+    const double psi = 2.0 * kPi * (k + 0.5) / nPsi;
+    cosPsi[k] = std::cos(psi);
+    sinPsi[k] = std::sin(psi);
+  }
   tbb::parallel_for(0, n, [&](int i) {
-    const glm::dvec3 wi = grid.direction(i);
+    const FrameAbout frame(grid.direction(i));
     double* row = &M[static_cast<std::size_t>(i) * n];
     for (std::size_t s = 0; s < gam.size(); ++s) {
-      const double mu = std::cos(gam[s]);
       for (int k = 0; k < nPsi; ++k) {
-        const double psi = 2.0 * kPi * (k + 0.5) / nPsi;
         int nodes[4];
         double w[4];
-        grid.bilinear(around(wi, mu, psi), nodes, w);
+        grid.bilinear(frame.around(mus[s], sines[s], cosPsi[k], sinPsi[k]), nodes, w);
         const double base = wgam[s] * 2.0 * kPi / nPsi;
         for (int c = 0; c < 4; ++c) row[nodes[c]] += base * w[c];
       }

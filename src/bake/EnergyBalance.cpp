@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
@@ -48,15 +49,41 @@ EnergyInputs energyInputsFromParameters(const Table4D* single, const Table4D* mu
 namespace {
 
 // A table's cell along its first three axes at the fractions x (locateCell), read on any
-// density slice through interpolateCell: what Table4D::sample computes, the three locations
-// shared by every slice.
+// density slice: what Table4D::sample (interpolateCell) computes, bit for bit. For a
+// single-channel table with two or more nodes on every axis (the scattering tables) the eight
+// corners of the first three axes (node offsets, weight products) are found once for every
+// slice; any other table goes through interpolateCell itself.
 struct CellOnSlices {
   std::uint32_t dims[4] = {0, 0, 0, 0}, i[4] = {0, 0, 0, 0};
   float f[4] = {0, 0, 0, 0};
-  void sample(const Table4D& t, std::uint32_t slice, float fraction, float* out) {
-    i[3] = slice;
-    f[3] = fraction;
-    cloudlut_reader::interpolateCell(t.data().data(), dims, t.channels().size(), i, f, out);
+  bool cornersKnown = false;
+  std::size_t offset[8] = {};  // node of corner c in slice 0 (bit k of c: axis k's upper node)
+  float weight[8] = {};        // Π_{k<3} (upper ? f_k : 1 − f_k), multiplied in axis order
+  std::size_t sliceStride = 0;  // nodes per density slice
+
+  // The table's (first) value between density nodes `slice` and `slice` + 1 at `fraction`:
+  // Σ over the 16 corners (axis 3 the slowest bit, as interpolateCell orders them) of
+  // weight · (upper ? fraction : 1 − fraction) · value, corners of weight 0 skipped.
+  float sample(const Table4D& t, std::uint32_t slice, float fraction) {
+    if (!cornersKnown) {
+      i[3] = slice;
+      f[3] = fraction;
+      std::vector<float> out(t.channels().size());
+      cloudlut_reader::interpolateCell(t.data().data(), dims, t.channels().size(), i, f, out.data());
+      return out[0];
+    }
+    const float* values = t.data().data();
+    float out = 0.0f;
+    for (std::size_t upper = 0; upper < 2; ++upper) {
+      const float w3 = upper ? fraction : 1.0f - fraction;
+      const float* s = values + (slice + upper) * sliceStride;
+      for (int c = 0; c < 8; ++c) {
+        const float w = weight[c] * w3;
+        if (w == 0.0f) continue;
+        out += w * s[offset[c]];
+      }
+    }
+    return out;
   }
 };
 
@@ -64,6 +91,21 @@ CellOnSlices locateOnSlices(const Table4D& t, const glm::vec4& x) {
   CellOnSlices c;
   for (int a = 0; a < 4; ++a) c.dims[a] = static_cast<std::uint32_t>(t.axes()[a].size);
   for (int a = 0; a < 3; ++a) cloudlut_reader::locateCell(x[a], c.dims[a], c.i[a], c.f[a]);
+  c.cornersKnown = t.channels().size() == 1;
+  for (int a = 0; a < 4; ++a) c.cornersKnown = c.cornersKnown && c.dims[a] >= 2;
+  if (!c.cornersKnown) return c;
+  c.sliceStride = static_cast<std::size_t>(c.dims[0]) * c.dims[1] * c.dims[2];
+  for (int corner = 0; corner < 8; ++corner) {
+    std::uint32_t j[3];
+    float w = 1.0f;
+    for (int k = 0; k < 3; ++k) {
+      const bool hi = ((corner >> k) & 1) != 0;
+      j[k] = c.i[k] + (hi ? 1u : 0u);
+      w *= hi ? c.f[k] : 1.0f - c.f[k];
+    }
+    c.offset[corner] = cloudlut_reader::nodeIndex(c.dims, j[0], j[1], j[2], 0);
+    c.weight[corner] = w;
+  }
   return c;
 }
 
@@ -143,11 +185,11 @@ EnergyBalance computeEnergyBalance(const Table4D* single, const Table4D* multipl
           const float tau = static_cast<float>(sigmas[k]) * 2.0f * cosV;
           float val = 0.0f;
           if (single) {
-            c1.sample(*single, sliceCells[k], sliceFracs[k], &val);
+            val = c1.sample(*single, sliceCells[k], sliceFracs[k]);
             b1[k] += static_cast<double>(scatteringFromStored(storage1, val, tau)) * cosV;
           }
           if (multiple) {
-            cm.sample(*multiple, sliceCells[k], sliceFracs[k], &val);
+            val = cm.sample(*multiple, sliceCells[k], sliceFracs[k]);
             bm[k] += static_cast<double>(scatteringFromStored(storageM, val, tau)) * cosV;
           }
         }

@@ -3,9 +3,11 @@
 #include <chrono>
 #include <cstdarg>
 #include <cstdio>
+#include <utility>
 
 #include "core/Defaults.h"
 #include "core/ReferenceParticle.h"
+#include "io/BackgroundTableWrites.h"
 #include "io/LutSetTransaction.h"
 #include "scene/AtmosphereJson.h"
 
@@ -40,7 +42,9 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
   // Everything is written into a staging directory and swapped in at the end (io/LutSetTransaction.h).
   io::LutSetTransaction transaction(plan.out);
   const std::filesystem::path& dir = transaction.stagingDir();
-  nlohmann::json entries = nlohmann::json::object();
+  // Each table's files are written in the background while the next table is baked (declared
+  // after the transaction: every write ends before an unwinding transaction removes its files).
+  io::BackgroundTableWrites writes;
   nlohmann::json timings = nlohmann::json::object();
   nlohmann::json forScene = nlohmann::json::object();
   if (plan.opticalDepth) {
@@ -56,11 +60,11 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
       forScene["optical_depth_opacity_error_p95"] = choice.errorP95;
     }
     const auto tBake = std::chrono::steady_clock::now();
-    const Table4D table = bakeOpticalDepth(particle, plan.od, progress);
+    Table4D table = bakeOpticalDepth(particle, plan.od, progress);
     forScene["optical_depth_bake_s"] = secondsSince(tBake);
     timings["optical_depth_s"] = secondsSince(t0);
     done(stageDone);
-    entries[table.name()] = io::writeTableFiles(table, plan.precision, dir, plan.formats);
+    writes.write(std::move(table), plan.precision, dir, plan.formats);
   }
   nlohmann::json scatteringReport;
   if (plan.scattering() && plan.forScene) {
@@ -79,23 +83,24 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
     done(stageDone);
     // Radiance is not confined to [0, 1]: 8-bit storage is for the optical-depth table only.
     const io::SampleType type = plan.precision == io::SampleType::U8 ? io::SampleType::Half : plan.precision;
-    for (const std::optional<Table4D>* t : {&result.single, &result.multiple})
-      if (*t) entries[(*t)->name()] = io::writeTableFiles(**t, type, dir, plan.formats);
+    for (std::optional<Table4D>* t : {&result.single, &result.multiple})
+      if (*t) writes.write(std::move(**t), type, dir, plan.formats);
     scatteringReport = result.report;
   }
 
   if (plan.atmosphere) {
     const auto t0 = std::chrono::steady_clock::now();
-    const AtmosphereTables atmosphere = bakeAtmosphere(plan.atmosphereParameters, {}, progress);
+    AtmosphereTables atmosphere = bakeAtmosphere(plan.atmosphereParameters, {}, progress);
     timings["atmosphere_s"] = secondsSince(t0);
     done(stageDone);
     // radiance and irradiance are not confined to [0, 1]: no 8-bit storage
     const io::SampleType type = plan.precision == io::SampleType::U8 ? io::SampleType::Half : plan.precision;
-    for (const Table4D* t : {&atmosphere.transmittance, &atmosphere.multipleScattering, &atmosphere.irradiance})
-      entries[t->name()] = io::writeTableFiles(*t, type, dir, plan.formats);
+    for (Table4D* t :
+         {&atmosphere.transmittance, &atmosphere.multipleScattering, &atmosphere.irradiance})
+      writes.write(std::move(*t), type, dir, plan.formats);
   }
 
-  nlohmann::json manifest = io::makeManifest(plan.generator, entries);
+  nlohmann::json manifest = io::makeManifest(plan.generator, writes.finish());
   manifest["parameters"] = {{"extinction_per_m", plan.od.extinction}, {"radius_m", plan.od.radius},
                             {"density_model", toString(plan.model)}, {"seed", plan.seed}};
   if (plan.scattering()) {

@@ -134,9 +134,15 @@ void gatherTable(const SphereField& field, const std::vector<float>& J, double s
       dirs.locateTheta(std::acos(std::clamp(w.z, -1.0, 1.0)), ia, fad);
       const float fa = static_cast<float>(fad);
       const double wh = std::hypot(w.x, w.y);
+      // The points S + s_k v = S − s_k w located four at a time along the ray.
       double value = 0.0;
-      for (std::size_t k = 0; k < ss.size(); ++k)
-        value += ww[k] * sampleField(field, J, field.locate(S + ss[k] * v, w, wh), ia, fa);
+      FieldPoint located[4];
+      const std::size_t n = ss.size();
+      for (std::size_t k = 0; k < n; ++k) {
+        if (k % 4 == 0)
+          field.locateRay(S, w, wh, &ss[k], static_cast<int>(std::min<std::size_t>(4, n - k)), located);
+        value += ww[k] * sampleField(field, J, located[k % 4], ia, fa);
+      }
       dst.at(dst.index(iS, iP, iV, slice), 0) = static_cast<float>(std::max(0.0, value / opacity));
     }
   });
@@ -154,6 +160,13 @@ FastMultipleScattering::FastMultipleScattering(const ScatteringSettings& setting
   const int D = sh->coarse.count(), F = sh->fine.count();
   sh->Mt = transposedFloat(phaseMatrix(sh->coarse, later), D, D);
   sh->M2t = transposedFloat(secondScatteringMatrix(sh->coarse, sh->fine, first, later), D, F);
+  // Every stencil array as large as the largest stencil (either grid, either rule): the pool
+  // then holds one array per slice running at once, not one per size (RecycledArrays.h).
+  const std::size_t cells = static_cast<std::size_t>(D) * static_cast<std::size_t>(
+                                std::max(res.radial * res.zenith, res.thinRadial * res.thinZenith));
+  const int points = std::max(TransportStencil::pointsPerRay(1.0, res.transportPoints),
+                              TransportStencil::pointsPerRay(kFarPanelMaxSigma, res.denseTransportPoints));
+  sh->stencils.setMinimumSize(cells * static_cast<std::size_t>(points));
   shared_ = std::move(sh);
 }
 

@@ -137,8 +137,8 @@ double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm
       Float4 t = -logFloat4(1.0f - u) * invS;
       t = t < tMax ? t : Float4{tMax, tMax, tMax, tMax};
       Float4 perp = 1.0f - (p0 + t * (p1 + t * p2));
-      Float4 root;
-      for (int k = 0; k < 4; ++k) root[k] = std::sqrt(std::max(0.0f, perp[k]));
+      perp = perp > 0.0f ? perp : Float4{0.0f, 0.0f, 0.0f, 0.0f};
+      const Float4 root = sqrtFloat4(perp);
       Float4 sun = root - (fz + t * gz);
       sun = sun > 0.0f ? sun : Float4{0.0f, 0.0f, 0.0f, 0.0f};
       part += g8.w[h] * expFloat4(-s * sun);

@@ -3,16 +3,20 @@
 // by page on first touch (a fault and a page clearing per 4 KiB); when every density slice of
 // a bake built its transport stencil in a fresh array, that was about 15% of the default bake's
 // CPU time (perf, 2026-12-02). Arrays returned to the pool are handed out again, so each is
-// mapped once per bake. Thread-safe: the density slices run side by side.
+// mapped once per bake, and in huge pages where the kernel offers them (HugePageBuffer.h).
+// Thread-safe: the density slices run side by side.
 //
 // T must be trivially copyable: arrays come back uninitialised (or holding an earlier user's
-// values), exactly like `new T[n]`.
+// values), like `new T[n]`; n·sizeof(T) must not overflow.
+#include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <mutex>
 #include <type_traits>
 #include <utility>
 #include <vector>
+
+#include "bake/HugePageBuffer.h"
 
 namespace cloudlut::bake {
 
@@ -36,7 +40,7 @@ class RecycledArrays {
       return *this;
     }
     ~Lease() { release(); }
-    T* data() const { return data_.get(); }
+    T* data() const { return static_cast<T*>(data_.get()); }
     std::size_t size() const { return size_; }
 
    private:
@@ -46,11 +50,19 @@ class RecycledArrays {
       pool_ = nullptr;
     }
     RecycledArrays* pool_ = nullptr;
-    std::unique_ptr<T[]> data_;
+    HugePageMemory data_;
     std::size_t size_ = 0;
   };
 
-  // The smallest free array of at least n elements, or a new one of exactly n.
+  // New arrays get at least n elements from now on: a pool whose users ask for several sizes
+  // (thin and dense density slices) then holds as many arrays as run at once, not one per size.
+  // Pages are mapped on first touch, so an array larger than its first user costs nothing more.
+  void setMinimumSize(std::size_t n) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    minimum_ = n;
+  }
+
+  // The smallest free array of at least n elements, or a new one of max(n, minimum size).
   Lease acquire(std::size_t n) {
     Lease lease;
     lease.pool_ = this;
@@ -65,20 +77,22 @@ class RecycledArrays {
         free_.erase(free_.begin() + static_cast<std::ptrdiff_t>(best));
         return lease;
       }
+      n = std::max(n, minimum_);
     }
-    lease.data_.reset(new T[n]);
+    lease.data_ = allocateHugePageMemory(n * sizeof(T));
     lease.size_ = n;
     return lease;
   }
 
  private:
-  void giveBack(std::unique_ptr<T[]> data, std::size_t n) {
+  void giveBack(HugePageMemory data, std::size_t n) {
     const std::lock_guard<std::mutex> lock(mutex_);
     free_.emplace_back(std::move(data), n);
   }
 
   std::mutex mutex_;
-  std::vector<std::pair<std::unique_ptr<T[]>, std::size_t>> free_;
+  std::vector<std::pair<HugePageMemory, std::size_t>> free_;
+  std::size_t minimum_ = 0;
 };
 
 }  // namespace cloudlut::bake

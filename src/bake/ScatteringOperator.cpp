@@ -36,12 +36,16 @@ void convolvePhase(const std::vector<float>& in, int inDirs, const std::vector<f
       tbb::simple_partitioner());
 }
 
-TransportStencil::TransportStencil(const SphereField& field, double sigma, int points, Storage& storage)
-    : field_(&field) {
-  // Points per ray: the rule's panels may round the total up (at least 2 points each).
+int TransportStencil::pointsPerRay(double sigma, int points) {
+  // The rule's panels may round the total up (at least 2 points each).
   std::vector<double> probeS, probeW;
   attenuatedRayRule(sigma, 2.0, points, probeS, probeW);
-  K_ = static_cast<int>(probeS.size());
+  return static_cast<int>(probeS.size());
+}
+
+TransportStencil::TransportStencil(const SphereField& field, double sigma, int points, Storage& storage)
+    : field_(&field) {
+  K_ = pointsPerRay(sigma, points);
   const DirectionGrid& dirs = field.directions();
   const int D = dirs.count(), nb = dirs.phiCount();
   entries_ = storage.acquire(field.size() * static_cast<std::size_t>(K_));

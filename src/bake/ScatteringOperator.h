@@ -34,6 +34,10 @@ class TransportStencil {
   // Where stencils keep their entries between density slices (about 10⁸ bytes each).
   using Storage = RecycledArrays<Entry>;
 
+  // Quadrature points per ray of the stencil for optical radius σ and `points` requested (the
+  // rule may round up).
+  static int pointsPerRay(double sigma, int points);
+
   // The stencil of T for optical radius σ with `points` quadrature points per ray (the rule
   // may round up), its entries leased from `storage`, which must outlive it.
   TransportStencil(const SphereField& field, double sigma, int points, Storage& storage);
