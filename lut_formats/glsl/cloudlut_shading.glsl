@@ -164,7 +164,7 @@ CLOUDLUT_FN float cloudSphereDensity(float tauColumn, float sigma) { return tauC
 // toward the sun at a point with little cloud toward it), the circle's nearest point that faces
 // the camera at least slightly (cos 88.85° = 0.02) stands in: the angle from the sun is clamped
 // to within 88.85° of the camera's, so the point moves continuously with θS along the limb. (An
-// earlier push toward the camera sent it through the sphere's centre, a hard edge in the image.)
+// earlier push toward the camera sent the point through the sphere's centre near the sun.)
 // Unit vector, world space; the scattering tables depend only on its angles to `dir` and `sun`.
 CLOUDLUT_FN vec3 cloudSphereEntry(float tauSun, float tauColumn, vec3 dir, vec3 sun) {
   const float kLimb = 1.55079637f;  // acos(0.02), radians
@@ -176,6 +176,23 @@ CLOUDLUT_FN vec3 cloudSphereEntry(float tauSun, float tauColumn, vec3 dir, vec3 
   float cameraAngle = azimuth(dot(toCamera, t), dot(toCamera, sun));  // [0, π] from the sun
   float angle = clamp(acos(cosS), cameraAngle - kLimb, cameraAngle + kLimb);
   return cos(angle) * sun + sin(angle) * t;
+}
+
+// The local cloud along the sun column through a point: the matter within a window of the
+// column, from `window` toward the sun to `window` away from it (a cloud's size, the layer's
+// depth), stands for the cloud the point is in; the matter beyond the window's sunward end
+// (other clouds, across clear air, that light cannot diffuse through) only shadows it. From the
+// optical depths toward the sun (all dimensionless) at the point (tauSun), at the window's
+// sunward end (tauSunEnd) and at its far end (tauFarEnd):
+//   x  the local cloud toward the sun, tauSun − tauSunEnd;
+//   y  the local column, tauFarEnd − tauSunEnd (at least x);
+//   z  the optical depth beyond the window toward the sun, tauSunEnd.
+// Optical depth grows away from the sun, so tauSunEnd ≤ tauSun ≤ tauFarEnd; values out of that
+// order (trilinear reads in different cascades) are clamped into it.
+CLOUDLUT_FN vec3 localCloudColumn(float tauSun, float tauSunEnd, float tauFarEnd) {
+  float beyond = clamp(tauSunEnd, 0.0f, max(tauSun, 0.0f));
+  float toward = max(tauSun, 0.0f) - beyond;
+  return vec3(toward, max(tauFarEnd - beyond, toward), beyond);
 }
 
 // Weight of the cloud-scale sphere against the particle's own (dimensionless, [0, 1]): the

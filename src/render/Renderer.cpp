@@ -215,7 +215,7 @@ struct Renderer::Impl {
     for (const scene::Particle& p : list) altitude += p.center.y / static_cast<float>(list.size());
     const RenderSettings lit = litByAtmosphere(s, altitude);
     const Built built = illuminate(list.size(), needsSunVolume(lit) ? sunGridFor(list, lit) : SunVolumeGrid{},
-                                   needsZenithVolume(lit) ? zenithGridFor(list) : SunVolumeGrid{}, lit, stats);
+                                   needsZenithVolume(lit) ? zenithGridFor(list, lit) : SunVolumeGrid{}, lit, stats);
     return draw(list.size(), false, farPlane, lit, built, stats);
   }
 
@@ -253,9 +253,13 @@ struct Renderer::Impl {
     return lit;
   }
 
-  // The sun volume's grid around explicit particles: their bounding spheres, columns a quarter of
-  // the smallest particle radius apart (at most 256 per side).
-  static SunVolumeGrid sunGridFor(const std::vector<scene::Particle>& list, const RenderSettings& s) {
+  // A column volume's grid around explicit particles, columns toward `toward`, spacingPerRadius
+  // times the smallest particle radius apart: one grid over their bounds where `columns` per side
+  // reach that spacing; otherwise (a wide scene, e.g. a dumped cloudscape) nested cascades around
+  // the camera over the particles' heights, as a cloudscape's, so that the columns near the eye
+  // keep the spacing.
+  static SunVolumeGrid columnGridFor(const std::vector<scene::Particle>& list, const RenderSettings& s,
+                                     const glm::vec3& toward, float spacingPerRadius, int columns, int slices) {
     glm::vec3 lo(0.0f), hi(0.0f);
     float smallest = 1.0f;
     for (std::size_t i = 0; i < list.size(); ++i) {
@@ -266,7 +270,14 @@ struct Renderer::Impl {
       hi = i == 0 ? p.center + reach : glm::max(hi, p.center + reach);
       smallest = i == 0 ? least : std::min(smallest, least);
     }
-    return sunVolumeGridForBounds(lo, hi, s.view.lighting.sunDirection, kSunColumnsPerRadius * smallest);
+    const float spacing = spacingPerRadius * smallest;
+    const float width = std::max(hi.x - lo.x, hi.z - lo.z);
+    if (width > spacing * static_cast<float>(columns - 3) && width > hi.y - lo.y)
+      return sunVolumeGridForLayer(s.view.camera.eye, lo.y, hi.y, toward, spacing, kSunCascadesMax, columns);
+    return sunVolumeGridForBounds(lo, hi, toward, spacing, columns, slices);
+  }
+  static SunVolumeGrid sunGridFor(const std::vector<scene::Particle>& list, const RenderSettings& s) {
+    return columnGridFor(list, s, s.view.lighting.sunDirection, kSunColumnsPerRadius, 256, 128);
   }
 
   // Around the camera for a cloud layer: the layer's heights widened by the largest particle
@@ -281,17 +292,8 @@ struct Renderer::Impl {
 
   // The zenith volume's grids: the sun volume's with vertical columns, twice as far apart and half
   // as many per side (the ambient varies over a particle's size, not over its rim).
-  static SunVolumeGrid zenithGridFor(const std::vector<scene::Particle>& list) {
-    glm::vec3 lo(0.0f), hi(0.0f);
-    float smallest = 1.0f;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const scene::Particle& p = list[i];
-      const float reach = std::max({p.radii.x, p.radii.y, p.radii.z});
-      lo = i == 0 ? p.center - reach : glm::min(lo, p.center - reach);
-      hi = i == 0 ? p.center + reach : glm::max(hi, p.center + reach);
-      smallest = std::min(i == 0 ? reach : smallest, std::min({p.radii.x, p.radii.y, p.radii.z}));
-    }
-    return sunVolumeGridForBounds(lo, hi, kZenith, kZenithColumnsPerRadius * smallest, kZenithColumns, kZenithSlices);
+  static SunVolumeGrid zenithGridFor(const std::vector<scene::Particle>& list, const RenderSettings& s) {
+    return columnGridFor(list, s, kZenith, kZenithColumnsPerRadius, kZenithColumns, kZenithSlices);
   }
   static SunVolumeGrid zenithGridFor(const scene::CloudType& cloud, const scene::QualityPreset& q,
                                      const RenderSettings& s) {

@@ -114,6 +114,7 @@ void SunVolume::bind(const ProgramUniforms& uniforms, int unit, const std::strin
   gl_.UniformMatrix4fv(uniforms.location(name("ToWorld").c_str()), grid_.cascades, GL_FALSE,
                        glm::value_ptr(grid_.toWorld[0]));
   uniforms.set(name("Columns").c_str(), grid_.sun);
+  uniforms.set(name("LocalCloud").c_str(), grid_.localCloud);
 }
 
 std::vector<float> SunVolume::readBack() const {

@@ -10,6 +10,15 @@ namespace cloudlut::render {
 
 namespace {
 
+// Row 2 (w) of a cascade's map m (m[column][row]) and its homogeneous row: w = (x_a − h0)/dh
+// when the sun lies toward +a (sunPositive), (h1 − x_a)/dh otherwise, so that w grows toward the
+// sun; world units in, slices out.
+void setSliceRow(glm::mat4& m, int a, bool sunPositive, float h0, float h1, float dh) {
+  m[a][2] = (sunPositive ? 1.0f : -1.0f) / dh;
+  m[3][2] = (sunPositive ? -h0 : h1) / dh;
+  m[3][3] = 1.0f;
+}
+
 // The affine map of one cascade. Axis a holds the slices, axes b and c the columns; the sheared
 // column coordinates are p = x_b − (x_a − h0)·l_b/l_a and q = x_c − (x_a − h0)·l_c/l_a, so a
 // line of constant (p, q) runs along l. u = (p − p0)/du, v = (q − q0)/du, and w = (x_a − h0)/dh
@@ -26,15 +35,7 @@ glm::mat4 gridMap(int a, const glm::vec3& l, float h0, float h1, float p0, float
   m[c][1] = 1.0f / du;
   m[a][1] = -sc / du;
   m[3][1] = (sc * h0 - q0) / du;
-  // row 2: w
-  if (l[a] > 0.0f) {
-    m[a][2] = 1.0f / dh;
-    m[3][2] = -h0 / dh;
-  } else {
-    m[a][2] = -1.0f / dh;
-    m[3][2] = h1 / dh;
-  }
-  m[3][3] = 1.0f;
+  setSliceRow(m, a, l[a] > 0.0f, h0, h1, dh);
   return m;
 }
 
@@ -48,14 +49,14 @@ glm::vec2 layerIntercept(const glm::vec3& x, const glm::vec3& l, float y0) {
 // by where their sun ray crosses y = h0, in a frame turned to the sun's azimuth h (unit, in the
 // x–z plane): along = (intercept · h − o.x)/(du/|l_y|), across = (intercept · h⊥ − o.y)/du, with
 // h⊥ = (−h_z, h_x). Two sun rays whose intercepts are d apart along h are d·|l_y| apart across
-// the beam, so the columns stretched by 1/|l_y| along h are du apart across the beam in both
-// directions: a particle's shadow covers about π(r/du)² columns whatever the sun's elevation
-// (a square grid on the plane would need 1/|l_y| times as many for a low sun). w as in gridMap.
-glm::mat4 layerGridMap(const glm::vec3& l, const glm::vec2& h, float h0, float h1, const glm::vec2& o, float du,
-                       float dh) {
-  const float duAlong = du / std::abs(l.y);
+// the beam, so the columns stretched by 1/|l_y| (`stretch`) along h are du apart across the beam
+// in both directions: a particle's shadow covers about π(r/du)² columns whatever the sun's
+// elevation (a square grid on the plane would need 1/|l_y| times as many for a low sun). h is
+// the sun's azimuth, so the intercept's h⊥ component does not change with y. w as in gridMap.
+glm::mat4 layerGridMap(const glm::vec3& l, const glm::vec2& h, float stretch, float h0, float h1, const glm::vec2& o,
+                       float du, float dh) {
+  const float duAlong = du * stretch;
   const float slopeAlong = (h.x * l.x + h.y * l.z) / l.y;  // d(intercept · h)/dy = −slopeAlong
-  const float slopeAcross = (-h.y * l.x + h.x * l.z) / l.y;
   glm::mat4 m(0.0f);  // m[column][row]; world x, y, z are columns 0, 1, 2
   m[0][0] = h.x / duAlong;
   m[2][0] = h.y / duAlong;
@@ -63,16 +64,8 @@ glm::mat4 layerGridMap(const glm::vec3& l, const glm::vec2& h, float h0, float h
   m[3][0] = (slopeAlong * h0 - o.x) / duAlong;
   m[0][1] = -h.y / du;
   m[2][1] = h.x / du;
-  m[1][1] = -slopeAcross / du;
-  m[3][1] = (slopeAcross * h0 - o.y) / du;
-  if (l.y > 0.0f) {
-    m[1][2] = 1.0f / dh;
-    m[3][2] = -h0 / dh;
-  } else {
-    m[1][2] = -1.0f / dh;
-    m[3][2] = h1 / dh;
-  }
-  m[3][3] = 1.0f;
+  m[3][1] = -o.y / du;
+  setSliceRow(m, 1, l.y > 0.0f, h0, h1, dh);
   return m;
 }
 
@@ -111,6 +104,7 @@ SunVolumeGrid sunVolumeGridForBounds(const glm::vec3& lo, const glm::vec3& hi, c
   g.cascades = 1;
   g.sliceAxis = a;
   g.sun = l;
+  g.localCloud = hi.y - lo.y;
   // One empty column on each side, so that sampling between the last column and the border
   // (GL_CLAMP_TO_BORDER, τ = 0) fades out instead of stopping.
   const int nu = static_cast<int>(std::ceil((pHi - pLo) / du)) + 3;
@@ -136,6 +130,7 @@ SunVolumeGrid sunVolumeGridForLayer(const glm::vec3& eye, float yLo, float yHi, 
   g.sliceAxis = 1;
   g.sun = l;
   g.dims = glm::ivec3(columns, columns, slices + 1);
+  g.localCloud = yHi - yLo;
   const float dh = (yHi - yLo) / static_cast<float>(slices);
   // The eye's column: where the sun ray through the eye crosses the layer's bottom, y = yLo.
   const glm::vec2 base = layerIntercept(eye, l, yLo);
@@ -144,7 +139,7 @@ SunVolumeGrid sunVolumeGridForLayer(const glm::vec3& eye, float yLo, float yHi, 
   float du = spacing0;
   for (int k = 0; k < g.cascades; ++k, du *= ratio) {
     const float halfWidth = 0.5f * du * static_cast<float>(columns - 1);
-    setCascade(g, k, layerGridMap(l, h, yLo, yHi, centre - glm::vec2(stretch, 1.0f) * halfWidth, du, dh));
+    setCascade(g, k, layerGridMap(l, h, stretch, yLo, yHi, centre - glm::vec2(stretch, 1.0f) * halfWidth, du, dh));
   }
   return g;
 }

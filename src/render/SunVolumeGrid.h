@@ -16,6 +16,8 @@ struct SunVolumeGrid {
   glm::mat4 toWorld[kSunCascadesMax];    // the inverse
   int sliceAxis = 1;                     // world axis of the slices (0 x, 1 y, 2 z)
   glm::vec3 sun{0.0f, 1.0f, 0.0f};       // unit, toward the sun, as the columns run
+  float localCloud = 0.0f;               // window along the columns that holds one cloud (world
+                                         // units: the clouds' depth; localCloudColumn)
 };
 
 // One cascade around an explicit particle scene: world bounds [lo, hi] (every particle's

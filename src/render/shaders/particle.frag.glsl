@@ -95,10 +95,14 @@ void main() {
   float transmittance = exp(-tau);
 
   // Where the light is scattered on average along the chord: its first matter, then the
-  // e^{−τt}-weighted mean of the rest (world point; particle space px). Inside, the matter
+  // e^{−τt}-weighted mean of the matter up to its last matter (world point). Inside, the matter
   // starts at the eye.
   float firstMatter = inside ? 0.0 : clamp(od.y, 0.0, 1.0);
-  float tMean = tNear + (tExit - tNear) * (firstMatter + (1.0 - firstMatter) * meanScatteringFraction(tau));
+  // ... to its last matter: the first matter of the same chord read from its exit (a share of the
+  // whole chord, so of the seen part divided by `front`).
+  float lastFromExit = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(normalize(o + tExit * d), -v), uOpticalDepthDims).y;
+  float lastMatter = 1.0 - min(clamp(lastFromExit, 0.0, 1.0) / max(front, 1e-6), 1.0 - firstMatter);
+  float tMean = tNear + (tExit - tNear) * (firstMatter + (lastMatter - firstMatter) * meanScatteringFraction(tau));
   vec3 xMean = uEye + dir * tMean;
 
   // Sunlight reaching the particle: per particle from the occlusion pass (seed §5.3), or at the
@@ -124,8 +128,9 @@ void main() {
   //   seed:  the mean source of the particle's sphere at ρ, times the sunlight;
   //   cloud: the particle's sphere at the ray's density ρ·T̄, lit by the larger of the direct and
   //          the diffuse transmittance through the cloud toward the sun, blended with the cloud
-  //          sphere of the column through the mean scattering point (cloudSphereEntry,
-  //          cloudSphereDensity) by the share of that column that is not the particle's own.
+  //          sphere of the local cloud around the mean scattering point (localCloudAlongSun,
+  //          cloudSphereEntry, cloudSphereDensity), lit the same way through the cloud beyond it,
+  //          by the share of the local column that is not the particle's own.
   float multiple = 0.0;
   if ((uTerms & 2) != 0) {
     if (uLighting == 0) {
@@ -134,12 +139,17 @@ void main() {
     } else {
       float lit = max(sunlight, diffuseTransmittance(tauOutside, uLaterAsymmetry));
       float own = lit * multipleScatteringFromTable(multipleSourceAt(S, v, l, rho * od.x), tau);
-      float weight = cloudScaleWeight(sunTau.w, sunTau.z);
+      // the cloud sphere: the local cloud's column (localCloudAlongSun), less the particle's own
+      // chords, weighs it (less 0.01: a cloud that thin is none, and reads at three points
+      // differ by the volume's fixed-point rounding, ~10⁻³); the cloud beyond the window toward
+      // the sun shadows it
+      vec3 local = localCloudAlongSun(xMean, sunTau.y);
+      float weight = cloudScaleWeight(max(local.y - (sunTau.z - sunTau.w) - 0.01, 0.0), local.y);
       if (weight > 0.0) {
-        // the cloud sphere: the whole column's optical depth toward and away from the sun
-        vec3 entry = cloudSphereEntry(sunTau.y, sunTau.z, dir, uSunDirection);
-        float rhoCloud = cloudSphereDensity(max(sunTau.z, tau), uUnitOpticalRadius);
-        float cloud = multipleScatteringFromTable(multipleSourceAt(entry, dir, uSunDirection, rhoCloud), tau);
+        vec3 entry = cloudSphereEntry(local.x, local.y, dir, uSunDirection);
+        float rhoCloud = cloudSphereDensity(max(local.y, tau), uUnitOpticalRadius);
+        float shadow = max(exp(-local.z), diffuseTransmittance(local.z, uLaterAsymmetry));
+        float cloud = shadow * multipleScatteringFromTable(multipleSourceAt(entry, dir, uSunDirection, rhoCloud), tau);
         multiple = mix(own, cloud, weight);
       } else {
         multiple = own;

@@ -14,7 +14,7 @@
 // A particle's contribution to one column (seed §4.1 table, eq. 1): the chord of the column's
 // sun ray through the particle has the optical depth τ_c = ρ·σ·L·T̄ of the optical-depth table,
 // laid linearly along the column from the chord's first matter (table channel 1) on its sun
-// side to its far end: τ rises from 0 at w = wFirst to τ_c at w = wFar (< wFirst) and stays
+// side to its last matter: τ rises from 0 at w = wFirst to τ_c at w = wFar (< wFirst) and stays
 // τ_c beyond. This ramp is written as its second difference in w (two weighted deltas, split
 // between the integer slices about each end) and recovered exactly at the integer slices by a
 // double prefix sum from the sun side (see sunVolumeRampAt).

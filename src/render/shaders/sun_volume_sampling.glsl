@@ -9,6 +9,7 @@ uniform ivec3 uSunDims;          // columns Nu, Nv and slices Nw of one cascade
 uniform mat4 uSunToGrid[SUN_CASCADES_MAX];
 uniform mat4 uSunToWorld[SUN_CASCADES_MAX];
 uniform vec3 uSunColumns;        // unit direction of the columns (the sun, raised off the horizon if need be)
+uniform float uSunLocalCloud;    // window along the columns that holds one cloud (world units; localCloudColumn)
 
 // Optical depth (dimensionless) toward the sun of the particles in front of world point x,
 // from the finest cascade whose columns hold x (trilinear; a point outside every cascade is
@@ -57,4 +58,12 @@ vec4 sunOpticalDepths(vec3 x, vec3 centre, mat3 toParticle, float rho, sampler3D
     return vec4(max(total - own, 0.0), total, column, max(column - ownColumn, 0.0));
   }
   return vec4(0.0);
+}
+
+// The local cloud along the sun column through world point x (localCloudColumn): the matter
+// within uSunLocalCloud toward and away from the sun, and the optical depth beyond it toward the
+// sun, given tauSun, the optical depth toward the sun at x (sunOpticalDepths(...).y).
+vec3 localCloudAlongSun(vec3 x, float tauSun) {
+  return localCloudColumn(tauSun, sunOpticalDepth(x + uSunLocalCloud * uSunColumns),
+                          sunOpticalDepth(x - uSunLocalCloud * uSunColumns));
 }
