@@ -94,12 +94,11 @@ void main() {
   tau *= particleDetailFactor(uEye, dir, tNear, tExit);  // detail noise: particle_detail.glsl
   float transmittance = exp(-tau);
 
-  // Where the light is scattered on average along the chord: its first matter, then the
-  // e^{−τt}-weighted mean of the matter up to its last matter (world point). Inside, the matter
-  // starts at the eye.
+  // Where the light is scattered on average along the chord (world point): its first matter,
+  // then the e^{−τt}-weighted mean of the stretch up to its last matter. Inside, the matter
+  // starts at the eye. The last matter is the first matter of the same chord read from its exit
+  // (a share of the whole chord, so of the seen part divided by `front`).
   float firstMatter = inside ? 0.0 : clamp(od.y, 0.0, 1.0);
-  // ... to its last matter: the first matter of the same chord read from its exit (a share of the
-  // whole chord, so of the seen part divided by `front`).
   float lastFromExit = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(normalize(o + tExit * d), -v), uOpticalDepthDims).y;
   float lastMatter = 1.0 - min(clamp(lastFromExit, 0.0, 1.0) / max(front, 1e-6), 1.0 - firstMatter);
   float tMean = tNear + (tExit - tNear) * (firstMatter + (lastMatter - firstMatter) * meanScatteringFraction(tau));
