@@ -127,20 +127,29 @@ inline Float4 expFloat4(Float4 x) { return float4_detail::expLanes(x); }
 
 inline Float4 logFloat4(Float4 x) { return float4_detail::logLanes(x); }
 
-inline Float4 atan2Float4(Float4 y, Float4 x) {
-  using namespace float4_detail;
-  const Float4 ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
-  const Int4 steep = ay > ax;
-  const Float4 hi = steep ? ay : ax, lo = steep ? ax : ay;
-  const Float4 a = lo / (hi > 0.0f ? hi : splat(1.0f));
-  const Float4 u = a * a;
-  const Float4 p = horner(u, {2.8498894535e-3f, -1.6068628058e-2f, 4.2691517621e-2f,
-                              -7.5042940676e-2f, 1.0640934110e-1f, -1.4203643799e-1f,
-                              1.9992619753e-1f, -3.3333072066e-1f, 1.0f});
-  Float4 r = a * p;
+namespace float4_detail {
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+// atan2Float4 for a float vector V of any width.
+template <class V>
+[[gnu::always_inline]] inline V atan2Lanes(V y, V x) {
+  using I = decltype(x < x);
+  const V ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
+  const I steep = ay > ax;
+  const V hi = steep ? ay : ax, lo = steep ? ax : ay;
+  const V a = lo / (hi > 0.0f ? hi : splatLanes<V>(1.0f));
+  const V u = a * a;
+  const V p = horner(u, {2.8498894535e-3f, -1.6068628058e-2f, 4.2691517621e-2f,
+                         -7.5042940676e-2f, 1.0640934110e-1f, -1.4203643799e-1f,
+                         1.9992619753e-1f, -3.3333072066e-1f, 1.0f});
+  V r = a * p;
   r = steep ? 1.57079632679489662f - r : r;
   r = x < 0.0f ? 3.14159265358979324f - r : r;
   return y < 0.0f ? -r : r;
 }
+#pragma GCC diagnostic pop
+}  // namespace float4_detail
+
+inline Float4 atan2Float4(Float4 y, Float4 x) { return float4_detail::atan2Lanes(y, x); }
 
 }  // namespace cloudlut
