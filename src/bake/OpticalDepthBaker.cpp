@@ -136,10 +136,10 @@ __attribute__((target("avx2"))) void integrateChords8(const ReferenceParticle& p
                                                       const glm::vec3 v[8], int steps, ChordIntegral out[8]) {
   integrateChordLanes<Float8>(particle, S, v, steps, out);
 }
-constexpr bool kHaveChords8 = true;
+bool haveChords8() { return __builtin_cpu_supports("avx2"); }
 #else
 void integrateChords8(const ReferenceParticle&, const glm::vec3*, const glm::vec3*, int, ChordIntegral*) {}
-constexpr bool kHaveChords8 = false;
+bool haveChords8() { return false; }
 #endif
 
 }  // namespace
@@ -182,7 +182,7 @@ Table4D bakeOpticalDepth(const ReferenceParticle& particle, const OpticalDepthSe
     }
 
   // Eight chords at once where the processor has AVX2 (the same values: integrateChords8).
-  const int lanes = kHaveChords8 && __builtin_cpu_supports("avx2") ? 8 : 4;
+  const int lanes = haveChords8() ? 8 : 4;
   const int slices = d[2] * d[3];
   std::atomic<int> done{0};
   tbb::parallel_for(tbb::blocked_range<int>(0, slices, 1), [&](const tbb::blocked_range<int>& r) {
