@@ -100,7 +100,7 @@ template <class V>
       }
     }
   }
-  // A few bisections of every bracket (four lanes at once), then the linear interpolation of
+  // A few bisections of every bracket (all lanes at once), then the linear interpolation of
   // the last one.
   if (anyBracketed) {
     for (int i = 0; i < kBisections; ++i) {

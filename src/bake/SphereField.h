@@ -65,7 +65,8 @@ class RadialAxis {
   double radius(int i) const { return radii_[static_cast<std::size_t>(i)]; }
   // The continuous node coordinate q(1 − r)·(n − 1) at four radii r ∈ [0, 1] (single precision).
   Float4 coordinates(Float4 r) const;
-  // The same at as many radii as V has lanes (Float8 in AVX2 code), lane for lane the same.
+  // The same at as many radii as V has lanes (Float8 in AVX2 code), lane for lane the same;
+  // defined in SphereField.cpp, its only user.
   template <class V>
   V coordinatesLanes(V r) const;
 
