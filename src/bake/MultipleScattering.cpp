@@ -134,14 +134,14 @@ void gatherTable(const SphereField& field, const std::vector<float>& J, double s
       dirs.locateTheta(std::acos(std::clamp(w.z, -1.0, 1.0)), ia, fad);
       const float fa = static_cast<float>(fad);
       const double wh = std::hypot(w.x, w.y);
-      // The points S + s_k v = S − s_k w located four at a time along the ray.
+      // The points S + s_k v = S − s_k w located eight at a time along the ray.
       double value = 0.0;
-      FieldPoint located[4];
+      FieldPoint located[8];
       const std::size_t n = ss.size();
       for (std::size_t k = 0; k < n; ++k) {
-        if (k % 4 == 0)
-          field.locateRay(S, w, wh, &ss[k], static_cast<int>(std::min<std::size_t>(4, n - k)), located);
-        value += ww[k] * sampleField(field, J, located[k % 4], ia, fa);
+        if (k % 8 == 0)
+          field.locateRay8(S, w, wh, &ss[k], static_cast<int>(std::min<std::size_t>(8, n - k)), located);
+        value += ww[k] * sampleField(field, J, located[k % 8], ia, fa);
       }
       dst.at(dst.index(iS, iP, iV, slice), 0) = static_cast<float>(std::max(0.0, value / opacity));
     }

@@ -41,14 +41,27 @@ ChordIntegral integrateChord(const ReferenceParticle& particle, const glm::vec3&
   return out[0];
 }
 
-void integrateChords4(const ReferenceParticle& particle, const glm::vec3 S[4], const glm::vec3 v[4], int steps,
-                      ChordIntegral out[4]) {
-  // Four chords side by side, each lane on its own panels (a lane past its last panel idles).
+// GCC warns that 32-byte vectors passed without AVX change the ABI; they are passed only inside
+// integrateChords8 below, compiled for AVX2 (its helpers are always inlined). It reports this at
+// the calls and at the end of the file, so the warning stays off from here on.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace {
+
+// integrateChords4 for N = lanes of the float vector V (Float4, or Float8 in AVX2 code): the
+// same operations per lane, so the same bits whatever the width. Always inlined into its
+// instruction set's caller.
+template <class V>
+[[gnu::always_inline]] inline void integrateChordLanes(const ReferenceParticle& particle, const glm::vec3* S,
+                                                       const glm::vec3* v, int steps, ChordIntegral* out) {
+  using I = decltype(V{} < V{});
+  constexpr int N = static_cast<int>(sizeof(V) / sizeof(float));
+  // N chords side by side, each lane on its own panels (a lane past its last panel idles).
   const float threshold = defaults::kFirstMatterThreshold;
-  Float4 sx, sy, sz, vx, vy, vz, L, h;
-  int panels[4];
+  V sx, sy, sz, vx, vy, vz, L, h;
+  int panels[N];
   int maxPanels = 0;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < N; ++k) {
     // Points exactly on the sphere may round to just outside it: pull S in by a hair.
     const glm::vec3 s = S[k] * (1.0f - 1e-6f);
     sx[k] = s.x, sy[k] = s.y, sz[k] = s.z;
@@ -59,24 +72,25 @@ void integrateChords4(const ReferenceParticle& particle, const glm::vec3 S[4], c
     h[k] = panels[k] > 0 ? L[k] / static_cast<float>(panels[k]) : 0.0f;
     maxPanels = std::max(maxPanels, panels[k]);
   }
-  const Float4 atS = particle.density4(sx, sy, sz);
-  double sum[4] = {0.0, 0.0, 0.0, 0.0};
+  const V atS = particle.densityLanes(sx, sy, sz);
+  double sum[N] = {};
   // The first matter: found at S, or bracketed between two samples (t0, d0 below the
   // threshold; t1, d1 at or above it) and refined below.
-  bool atStart[4], bracketed[4] = {false, false, false, false};
-  Float4 t0 = {0, 0, 0, 0}, d0 = atS, t1 = {0, 0, 0, 0}, d1 = atS;
-  for (int k = 0; k < 4; ++k) atStart[k] = atS[k] >= threshold;
+  bool atStart[N], bracketed[N] = {};
+  V t0 = {}, d0 = atS, t1 = {}, d1 = atS;
+  bool anyBracketed = false;
+  for (int k = 0; k < N; ++k) atStart[k] = atS[k] >= threshold;
   for (int p = 0; p < maxPanels; ++p) {
-    const Float4 a = h * static_cast<float>(p);
+    const V a = h * static_cast<float>(p);
     for (const float g : {kGaussLo, kGaussHi}) {
-      const Float4 t = a + g * h;
-      const Float4 d = particle.density4(sx + t * vx, sy + t * vy, sz + t * vz);
-      for (int k = 0; k < 4; ++k) {
+      const V t = a + g * h;
+      const V d = particle.densityLanes(sx + t * vx, sy + t * vy, sz + t * vz);
+      for (int k = 0; k < N; ++k) {
         if (p >= panels[k]) continue;
         sum[k] += d[k];
         if (atStart[k] || bracketed[k]) continue;
         if (d[k] >= threshold) {
-          bracketed[k] = true;
+          bracketed[k] = anyBracketed = true;
           t1[k] = t[k];
           d1[k] = d[k];
         } else {
@@ -86,20 +100,20 @@ void integrateChords4(const ReferenceParticle& particle, const glm::vec3 S[4], c
       }
     }
   }
-  // A few bisections of every bracket (four lanes at once), then the linear interpolation of
+  // A few bisections of every bracket (all lanes at once), then the linear interpolation of
   // the last one.
-  if (bracketed[0] || bracketed[1] || bracketed[2] || bracketed[3]) {
+  if (anyBracketed) {
     for (int i = 0; i < kBisections; ++i) {
-      const Float4 tm = 0.5f * (t0 + t1);
-      const Float4 dm = particle.density4(sx + tm * vx, sy + tm * vy, sz + tm * vz);
-      const Int4 above = dm >= threshold;
+      const V tm = 0.5f * (t0 + t1);
+      const V dm = particle.densityLanes(sx + tm * vx, sy + tm * vy, sz + tm * vz);
+      const I above = dm >= threshold;
       t1 = above ? tm : t1;
       d1 = above ? dm : d1;
       t0 = above ? t0 : tm;
       d0 = above ? d0 : dm;
     }
   }
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < N; ++k) {
     if (panels[k] == 0) {
       out[k] = {atS[k], atStart[k] ? 0.0f : 1.0f};
       continue;
@@ -114,6 +128,25 @@ void integrateChords4(const ReferenceParticle& particle, const glm::vec3 S[4], c
     const float mean = static_cast<float>(sum[k] / (2.0 * panels[k]));
     out[k] = {std::clamp(mean, 0.0f, 1.0f), first};
   }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// Eight chords at once (AVX2; no fused multiply-add): integrateChords4's bits.
+__attribute__((target("avx2"))) void integrateChords8(const ReferenceParticle& particle, const glm::vec3 S[8],
+                                                      const glm::vec3 v[8], int steps, ChordIntegral out[8]) {
+  integrateChordLanes<Float8>(particle, S, v, steps, out);
+}
+bool haveChords8() { return __builtin_cpu_supports("avx2"); }
+#else
+void integrateChords8(const ReferenceParticle&, const glm::vec3*, const glm::vec3*, int, ChordIntegral*) {}
+bool haveChords8() { return false; }
+#endif
+
+}  // namespace
+
+void integrateChords4(const ReferenceParticle& particle, const glm::vec3 S[4], const glm::vec3 v[4], int steps,
+                      ChordIntegral out[4]) {
+  integrateChordLanes<Float4>(particle, S, v, steps, out);
 }
 
 std::array<Axis, 4> opticalDepthAxes(const std::array<int, 4>& d) {
@@ -148,6 +181,8 @@ Table4D bakeOpticalDepth(const ReferenceParticle& particle, const OpticalDepthSe
       frames[i1 * d[0] + i0] = {glsl::sphericalPoint(phi, theta), glsl::tangentX(phi, theta), glsl::tangentY(phi)};
     }
 
+  // Eight chords at once where the processor has AVX2 (the same values: integrateChords8).
+  const int lanes = haveChords8() ? 8 : 4;
   const int slices = d[2] * d[3];
   std::atomic<int> done{0};
   tbb::parallel_for(tbb::blocked_range<int>(0, slices, 1), [&](const tbb::blocked_range<int>& r) {
@@ -155,16 +190,19 @@ Table4D bakeOpticalDepth(const ReferenceParticle& particle, const OpticalDepthSe
       const int i2 = slice % d[2], i3 = slice / d[2];
       const float phiV = static_cast<float>(axes[2].value(i2)), thetaV = static_cast<float>(axes[3].value(i3));
       for (int i1 = 0; i1 < d[1]; ++i1)
-        for (int i0 = 0; i0 < d[0]; i0 += 4) {  // four entry points at a time
-          const int n = std::min(4, d[0] - i0);
-          glm::vec3 S[4], v[4];
-          for (int k = 0; k < 4; ++k) {
+        for (int i0 = 0; i0 < d[0]; i0 += lanes) {  // four or eight entry points at a time
+          const int n = std::min(lanes, d[0] - i0);
+          glm::vec3 S[8], v[8];
+          for (int k = 0; k < lanes; ++k) {
             const Frame& f = frames[i1 * d[0] + i0 + std::min(k, n - 1)];
             S[k] = f.S;
             v[k] = glsl::frameDirection(f.x, f.y, f.S, phiV, thetaV);
           }
-          ChordIntegral c[4];
-          integrateChords4(particle, S, v, steps, c);
+          ChordIntegral c[8];
+          if (lanes == 8)
+            integrateChords8(particle, S, v, steps, c);
+          else
+            integrateChords4(particle, S, v, steps, c);
           for (int k = 0; k < n; ++k) {
             const std::size_t node = table.index(i0 + k, i1, i2, i3);
             table.at(node, 0) = c[k].meanDensity;

@@ -68,10 +68,10 @@ TransportStencil::TransportStencil(const SphereField& field, double sigma, int p
           ss[nonzero] = ss[k];
           ww[nonzero++] = ww[k];
         }
-      FieldPoint located[4];
+      FieldPoint located[8];
       for (int k = 0; k < nonzero; ++k) {
-        if (k % 4 == 0) field.locateRay(x, w, wh, &ss[k], std::min(4, nonzero - k), located);
-        const FieldPoint& p = located[k % 4];
+        if (k % 8 == 0) field.locateRay8(x, w, wh, &ss[k], std::min(8, nonzero - k), located);
+        const FieldPoint& p = located[k % 8];
         Entry& q = e[k];
         q.base = static_cast<std::uint32_t>(p.offset + static_cast<std::size_t>(ia) * nb * field.directionStride());
         for (int c = 0; c < 4; ++c) {

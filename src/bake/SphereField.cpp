@@ -28,15 +28,24 @@ double RadialAxis::qOfDepth(double d) const {
   return A_ > 1e-9 ? alpha_ * d + (1.0 - alpha_) * std::log1p(A_ * d) / logA_ : d;
 }
 
-Float4 RadialAxis::coordinates(Float4 r) const {
-  Float4 d = 1.0f - r;
-  d = d < 0.0f ? Float4{0, 0, 0, 0} : d;
-  d = d > 1.0f ? Float4{1, 1, 1, 1} : d;
-  const Float4 q = A_ > 1e-9 ? static_cast<float>(alpha_) * d +
-                                   static_cast<float>((1.0 - alpha_) / logA_) * logFloat4(1.0f + static_cast<float>(A_) * d)
-                             : d;
+// GCC warns that 32-byte vectors passed without AVX change the ABI; they are passed only inside
+// SphereField::locateRayAvx2, compiled for AVX2 (its helpers are always inlined). It reports this
+// at the calls and at the end of the file, so the warning stays off from here on.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+template <class V>
+[[gnu::always_inline]] inline V RadialAxis::coordinatesLanes(V r) const {
+  V d = 1.0f - r;
+  d = d < 0.0f ? V{} : d;
+  d = d > 1.0f ? V{} + 1.0f : d;
+  const V q = A_ > 1e-9 ? static_cast<float>(alpha_) * d +
+                              static_cast<float>((1.0 - alpha_) / logA_) *
+                                  float4_detail::logLanes(1.0f + static_cast<float>(A_) * d)
+                        : d;
   return q * static_cast<float>(n_ - 1);
 }
+
+Float4 RadialAxis::coordinates(Float4 r) const { return coordinatesLanes(r); }
 
 SphereField::SphereField(int nr, int nt, double grading, double linearShare, double sigma,
                          const DirectionGrid& directions)
@@ -56,13 +65,15 @@ FieldPoint SphereField::locate(const glm::dvec3& y, const glm::dvec3& w, double 
   return p;
 }
 
-void SphereField::locateRay(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
-                            FieldPoint* out) const {
-  // The points in double, their angles and depth coordinates in single precision, four lanes
-  // at once (a node coordinate off by 1e-6 of a cell moves nothing that matters); unused
-  // lanes repeat the last point.
-  Float4 rho, z, r, num, den;
-  for (int k = 0; k < 4; ++k) {
+template <class V>
+[[gnu::always_inline]] inline void SphereField::locateRayLanes(const glm::dvec3& x, const glm::dvec3& w, double wh,
+                                                               const double* s, int n, FieldPoint* out) const {
+  // The points in double, their angles and depth coordinates in single precision, as many
+  // lanes at once as V has (a node coordinate off by 1e-6 of a cell moves nothing that
+  // matters); unused lanes repeat the last point.
+  constexpr int N = static_cast<int>(sizeof(V) / sizeof(float));
+  V rho, z, r, num, den;
+  for (int k = 0; k < N; ++k) {
     const double sk = s[std::min(k, n - 1)];
     const glm::dvec3 y = x - sk * w;
     const double rho2 = y.x * y.x + y.y * y.y;
@@ -73,9 +84,9 @@ void SphereField::locateRay(const glm::dvec3& x, const glm::dvec3& w, double wh,
     num[k] = static_cast<float>(w.y * y.x - w.x * y.y);
     den[k] = static_cast<float>(w.x * y.x + w.y * y.y);
   }
-  const Float4 qr = radial_.coordinates(r);
-  const Float4 qt = atan2Float4(rho, z) * static_cast<float>((nt_ - 1) / kPi);
-  const Float4 phi = atan2Float4(num, den);
+  const V qr = radial_.coordinatesLanes(r);
+  const V qt = float4_detail::atan2Lanes(rho, z) * static_cast<float>((nt_ - 1) / kPi);
+  const V phi = float4_detail::atan2Lanes(num, den);
   for (int k = 0; k < n; ++k) {
     FieldPoint& p = out[k];
     int ir, it, ib;
@@ -89,6 +100,28 @@ void SphereField::locateRay(const glm::dvec3& x, const glm::dvec3& w, double wh,
     p.offset = static_cast<std::size_t>(ir) * radialStride() + static_cast<std::size_t>(ib) * directionStride() +
                static_cast<std::size_t>(it);
   }
+}
+
+void SphereField::locateRay(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
+                            FieldPoint* out) const {
+  locateRayLanes<Float4>(x, w, wh, s, n, out);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target("avx2"))) void SphereField::locateRayAvx2(const glm::dvec3& x, const glm::dvec3& w, double wh,
+                                                                const double* s, int n, FieldPoint* out) const {
+  locateRayLanes<Float8>(x, w, wh, s, n, out);
+}
+#endif
+
+void SphereField::locateRay8(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
+                             FieldPoint* out) const {
+#if defined(__x86_64__) && defined(__GNUC__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) return locateRayAvx2(x, w, wh, s, n, out);
+#endif
+  locateRayLanes<Float4>(x, w, wh, s, std::min(n, 4), out);
+  if (n > 4) locateRayLanes<Float4>(x, w, wh, s + 4, n - 4, out + 4);
 }
 
 }  // namespace cloudlut::bake

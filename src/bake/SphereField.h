@@ -65,6 +65,10 @@ class RadialAxis {
   double radius(int i) const { return radii_[static_cast<std::size_t>(i)]; }
   // The continuous node coordinate q(1 − r)·(n − 1) at four radii r ∈ [0, 1] (single precision).
   Float4 coordinates(Float4 r) const;
+  // The same at as many radii as V has lanes (Float8 in AVX2 code), lane for lane the same;
+  // defined in SphereField.cpp, its only user.
+  template <class V>
+  V coordinatesLanes(V r) const;
 
  private:
   double qOfDepth(double d) const;
@@ -128,8 +132,16 @@ class SphereField {
   FieldPoint locate(const glm::dvec3& y, const glm::dvec3& w, double wh) const;
   // locate at the n ≤ 4 points x − s[k]·w of one ray (their angles and depths four at a time).
   void locateRay(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n, FieldPoint* out) const;
+  // The same for n ≤ 8 points: eight lanes at once where the processor has AVX2, else two
+  // locateRay calls (the same values either way).
+  void locateRay8(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n, FieldPoint* out) const;
 
  private:
+  template <class V>
+  void locateRayLanes(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
+                      FieldPoint* out) const;
+  void locateRayAvx2(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
+                     FieldPoint* out) const;
   int nr_, nt_;
   const DirectionGrid* directions_;
   RadialAxis radial_;

@@ -9,6 +9,8 @@ namespace cloudlut {
 
 typedef float Float4 __attribute__((vector_size(16)));
 typedef std::int32_t Int4 __attribute__((vector_size(16)));
+// Eight floats, for code compiled for AVX2 (target attribute) and chosen at run time.
+typedef float Float8 __attribute__((vector_size(32)));
 
 inline Float4 loadFloat4(const float* p) {
   Float4 v;
@@ -45,82 +47,109 @@ Float4 atan2Float4(Float4 y, Float4 x);
 
 // Definitions of the three functions above, inline: they run in the innermost loops of the bake
 // (the J_2 ray integrals, the stencils' locate), where a call per four lanes cost ~10% of them.
+// exp and log are written once for any float vector (expLanes, logLanes): four lanes here, eight
+// in the AVX2 paths (Float8), each lane by the same operations.
+// Always inlined: instantiated for Float8 they run inside AVX2 functions only (the warning
+// about passing 32-byte vectors without AVX concerns out-of-line calls, which never happen).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
 namespace float4_detail {
 // ln 2 = kLn2Hi + kLn2Lo, kLn2Hi with few mantissa bits (n · kLn2Hi exact for |n| < 2^9).
 constexpr float kLn2Hi = 0.693359375f, kLn2Lo = -2.12194440e-4f;
 constexpr float kLog2e = 1.44269504088896341f;
 
 inline Float4 splat(float v) { return Float4{v, v, v, v}; }
+template <class V>
+[[gnu::always_inline]] inline V splatLanes(float v) {
+  return V{} + v;
+}
 
 // c[0]·x^(n−1) + … + c[n−1] by Horner's rule, per lane.
-inline Float4 horner(Float4 x, std::initializer_list<float> c) {
+template <class V>
+[[gnu::always_inline]] inline V horner(V x, std::initializer_list<float> c) {
   const float* k = c.begin();
-  Float4 p = splat(*k);
+  V p = splatLanes<V>(*k);
   for (++k; k != c.end(); ++k) p = p * x + *k;
   return p;
 }
 
-inline Float4 fromBits(Int4 b) {
-  Float4 f;
-  std::memcpy(&f, &b, sizeof f);
-  return f;
+template <class T, class F>
+[[gnu::always_inline]] inline T bitsAs(F f) {
+  T t;
+  static_assert(sizeof t == sizeof f, "same size");
+  std::memcpy(&t, &f, sizeof t);
+  return t;
 }
-inline Int4 toBits(Float4 f) {
-  Int4 b;
-  std::memcpy(&b, &f, sizeof b);
-  return b;
-}
-}  // namespace float4_detail
+inline Float4 fromBits(Int4 b) { return bitsAs<Float4>(b); }
+inline Int4 toBits(Float4 f) { return bitsAs<Int4>(f); }
 
-inline Float4 expFloat4(Float4 x) {
-  using namespace float4_detail;
-  const Int4 under = x < -87.3f;  // −1 where e^x is below the normal range
-  x = x < -87.3f ? splat(-87.3f) : x;
+// expFloat4 and logFloat4 for a float vector V of any width (I: its int vector).
+template <class V>
+[[gnu::always_inline]] inline V expLanes(V x) {
+  using I = decltype(x < x);
+  const I under = x < -87.3f;  // −1 where e^x is below the normal range
+  x = x < -87.3f ? splatLanes<V>(-87.3f) : x;
   // n = round(x / ln 2), as floor(x log2 e + 1/2) (conversion truncates toward zero)
-  const Float4 fx = x * kLog2e + 0.5f;
-  Float4 n = __builtin_convertvector(__builtin_convertvector(fx, Int4), Float4);
+  const V fx = x * kLog2e + 0.5f;
+  V n = __builtin_convertvector(__builtin_convertvector(fx, I), V);
   n = n > fx ? n - 1.0f : n;
-  const Float4 r = (x - n * kLn2Hi) - n * kLn2Lo;
+  const V r = (x - n * kLn2Hi) - n * kLn2Lo;
   // e^r = 1 + r + r² Q(r), Q by minimax on |r| ≤ ln 2 / 2
-  const Float4 q = horner(r, {1.9875691500e-4f, 1.3981999507e-3f, 8.3334519073e-3f,
-                              4.1665795894e-2f, 1.6666665459e-1f, 5.0000001201e-1f});
-  const Float4 er = (q * (r * r) + r) + 1.0f;
-  const Int4 scale = (__builtin_convertvector(n, Int4) + 127) << 23;  // 2^n
-  const Float4 y = er * fromBits(scale);
-  return under ? splat(0.0f) : y;
+  const V q = horner(r, {1.9875691500e-4f, 1.3981999507e-3f, 8.3334519073e-3f,
+                         4.1665795894e-2f, 1.6666665459e-1f, 5.0000001201e-1f});
+  const V er = (q * (r * r) + r) + 1.0f;
+  const I scale = (__builtin_convertvector(n, I) + 127) << 23;  // 2^n
+  const V y = er * bitsAs<V>(scale);
+  return under ? splatLanes<V>(0.0f) : y;
 }
 
-inline Float4 logFloat4(Float4 x) {
-  using namespace float4_detail;
-  const Int4 bits = toBits(x);
-  Int4 e = ((bits >> 23) & 0xff) - 126;                 // x = m 2^e, m ∈ [1/2, 1)
-  Float4 m = fromBits((bits & 0x007fffff) | 0x3f000000);
-  const Int4 low = m < 0.70710678118654752f;            // m < √½: use 2m, e − 1
+template <class V>
+[[gnu::always_inline]] inline V logLanes(V x) {
+  using I = decltype(x < x);
+  const I bits = bitsAs<I>(x);
+  I e = ((bits >> 23) & 0xff) - 126;                          // x = m 2^e, m ∈ [1/2, 1)
+  V m = bitsAs<V>((bits & 0x007fffff) | 0x3f000000);
+  const I low = m < 0.70710678118654752f;                     // m < √½: use 2m, e − 1
   e = low ? e - 1 : e;
-  const Float4 z = low ? (m + m) - 1.0f : m - 1.0f;     // z ∈ [√½ − 1, √2 − 1)
-  const Float4 p = horner(z, {7.0376836292e-2f, -1.1514610310e-1f, 1.1676998740e-1f,
-                              -1.2420140846e-1f, 1.4249322787e-1f, -1.6668057665e-1f,
-                              2.0000714765e-1f, -2.4999993993e-1f, 3.3333331174e-1f});
-  const Float4 z2 = z * z, fe = __builtin_convertvector(e, Float4);
-  Float4 y = z * z2 * p + fe * kLn2Lo;
+  const V z = low ? (m + m) - 1.0f : m - 1.0f;                // z ∈ [√½ − 1, √2 − 1)
+  const V p = horner(z, {7.0376836292e-2f, -1.1514610310e-1f, 1.1676998740e-1f,
+                         -1.2420140846e-1f, 1.4249322787e-1f, -1.6668057665e-1f,
+                         2.0000714765e-1f, -2.4999993993e-1f, 3.3333331174e-1f});
+  const V z2 = z * z, fe = __builtin_convertvector(e, V);
+  V y = z * z2 * p + fe * kLn2Lo;
   y = y - 0.5f * z2;
   return (z + y) + fe * kLn2Hi;
 }
+}  // namespace float4_detail
+#pragma GCC diagnostic pop
 
-inline Float4 atan2Float4(Float4 y, Float4 x) {
-  using namespace float4_detail;
-  const Float4 ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
-  const Int4 steep = ay > ax;
-  const Float4 hi = steep ? ay : ax, lo = steep ? ax : ay;
-  const Float4 a = lo / (hi > 0.0f ? hi : splat(1.0f));
-  const Float4 u = a * a;
-  const Float4 p = horner(u, {2.8498894535e-3f, -1.6068628058e-2f, 4.2691517621e-2f,
-                              -7.5042940676e-2f, 1.0640934110e-1f, -1.4203643799e-1f,
-                              1.9992619753e-1f, -3.3333072066e-1f, 1.0f});
-  Float4 r = a * p;
+inline Float4 expFloat4(Float4 x) { return float4_detail::expLanes(x); }
+
+inline Float4 logFloat4(Float4 x) { return float4_detail::logLanes(x); }
+
+namespace float4_detail {
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+// atan2Float4 for a float vector V of any width.
+template <class V>
+[[gnu::always_inline]] inline V atan2Lanes(V y, V x) {
+  using I = decltype(x < x);
+  const V ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
+  const I steep = ay > ax;
+  const V hi = steep ? ay : ax, lo = steep ? ax : ay;
+  const V a = lo / (hi > 0.0f ? hi : splatLanes<V>(1.0f));
+  const V u = a * a;
+  const V p = horner(u, {2.8498894535e-3f, -1.6068628058e-2f, 4.2691517621e-2f,
+                         -7.5042940676e-2f, 1.0640934110e-1f, -1.4203643799e-1f,
+                         1.9992619753e-1f, -3.3333072066e-1f, 1.0f});
+  V r = a * p;
   r = steep ? 1.57079632679489662f - r : r;
   r = x < 0.0f ? 3.14159265358979324f - r : r;
   return y < 0.0f ? -r : r;
 }
+#pragma GCC diagnostic pop
+}  // namespace float4_detail
+
+inline Float4 atan2Float4(Float4 y, Float4 x) { return float4_detail::atan2Lanes(y, x); }
 
 }  // namespace cloudlut

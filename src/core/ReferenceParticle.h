@@ -56,18 +56,28 @@ class ReferenceParticle {
 
   // ρ̂ at four points (x, y, z per lane): density() lane by lane, bit for bit (the same
   // arithmetic in the same order, four lanes per instruction).
-  Float4 density4(Float4 x, Float4 y, Float4 z) const {
-    const Float4 r2 = x * x + y * y + z * z;
-    Float4 d;
+  Float4 density4(Float4 x, Float4 y, Float4 z) const { return densityLanes<Float4>(x, y, z); }
+
+  // density4 for a float vector V of any width (Float8 in AVX2 code): the same per lane.
+  // Always inlined, so a wide instance runs in its caller's instruction set (GCC's warning about
+  // passing 32-byte vectors without AVX concerns out-of-line calls, which never happen).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+  template <class V>
+  [[gnu::always_inline]] V densityLanes(V x, V y, V z) const {
+    using I = decltype(x < x);
+    const V r2 = x * x + y * y + z * z;
+    V d;
     switch (model_) {
-      case DensityModel::Sphere: d = Float4{1.0f, 1.0f, 1.0f, 1.0f}; break;
+      case DensityModel::Sphere: d = V{} + 1.0f; break;
       case DensityModel::Radial:
-        for (int k = 0; k < 4; ++k) d[k] = radialFalloff(r2[k]);
+        for (int k = 0; k < lanes<V>(); ++k) d[k] = radialFalloff(r2[k]);
         break;
-      default: d = gridDensity<Float4, Int4>(x, y, z);
+      default: d = gridDensity<V, I>(x, y, z);
     }
-    return r2 > 1.0f ? Float4{0.0f, 0.0f, 0.0f, 0.0f} : d;
+    return r2 > 1.0f ? V{} : d;
   }
+#pragma GCC diagnostic pop
 
   // The metaball fall-off (1 - r²)², r² = |p|² (dimensionless).
   static float radialFalloff(float r2) {
@@ -77,38 +87,58 @@ class ReferenceParticle {
 
  private:
   // The trilinear interpolation of the grid at (x, y, z) ∈ [−1, 1]³, for one point (V float,
-  // I int) or four (V Float4, I Int4); the lane helpers below differ only in how they
-  // convert, clamp and fetch.
+  // I int) or several (V a float vector, I its int vector); the lane helpers below differ only
+  // in how they convert, clamp and fetch (the V argument only chooses the overload).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+  template <class V>
+  static constexpr int lanes() {
+    return static_cast<int>(sizeof(V) / sizeof(float));
+  }
   static int truncate(float v) { return static_cast<int>(v); }
-  static Int4 truncate(Float4 v) { return __builtin_convertvector(v, Int4); }
-  static float toFloat(int v) { return static_cast<float>(v); }
-  static Float4 toFloat(Int4 v) { return __builtin_convertvector(v, Float4); }
+  template <class V>
+  [[gnu::always_inline]] static auto truncate(V v) {
+    return __builtin_convertvector(v, decltype(v < v));
+  }
+  static float toFloat(int v, float) { return static_cast<float>(v); }
+  template <class I, class V>
+  [[gnu::always_inline]] static V toFloat(I v, V) {
+    return __builtin_convertvector(v, V);
+  }
   static int clampIndex(int i, int last) { return i < 0 ? 0 : (i > last ? last : i); }
-  static Int4 clampIndex(Int4 i, int last) {
-    const Int4 lo = {0, 0, 0, 0}, hi = {last, last, last, last};
+  template <class I>
+  [[gnu::always_inline]] static I clampIndex(I i, int last) {
+    const I lo = I{}, hi = I{} + last;
     i = i < 0 ? lo : i;
     return i > last ? hi : i;
   }
-  static float fetch(const float* c, int o) { return c[o]; }
-  static Float4 fetch(const float* c, Int4 o) { return Float4{c[o[0]], c[o[1]], c[o[2]], c[o[3]]}; }
+  static float fetch(const float* c, int o, float) { return c[o]; }
+  template <class I, class V>
+  [[gnu::always_inline]] static V fetch(const float* c, I o, V) {
+    V v;
+    for (int k = 0; k < lanes<V>(); ++k) v[k] = c[o[k]];
+    return v;
+  }
 
   template <class V, class I>
-  V gridDensity(V x, V y, V z) const {
+  [[gnu::always_inline]] V gridDensity(V x, V y, V z) const {
     const float s = 0.5f * static_cast<float>(res_ - 1);
     const V gx = (x + 1.0f) * s, gy = (y + 1.0f) * s, gz = (z + 1.0f) * s;
     const int last = res_ - 2;
     const I ix = clampIndex(truncate(gx), last), iy = clampIndex(truncate(gy), last), iz = clampIndex(truncate(gz), last);
-    const V fx = gx - toFloat(ix), fy = gy - toFloat(iy), fz = gz - toFloat(iz);
+    const V fx = gx - toFloat(ix, V{}), fy = gy - toFloat(iy, V{}), fz = gz - toFloat(iz, V{});
     const int sy = res_, sz = res_ * res_;  // at most 1024³ nodes: offsets fit an int
     const I o = iz * sz + iy * sy + ix;
     const float* c = grid_.data();
-    const V c00 = fetch(c, o) + fx * (fetch(c + 1, o) - fetch(c, o));
-    const V c10 = fetch(c + sy, o) + fx * (fetch(c + sy + 1, o) - fetch(c + sy, o));
-    const V c01 = fetch(c + sz, o) + fx * (fetch(c + sz + 1, o) - fetch(c + sz, o));
-    const V c11 = fetch(c + sz + sy, o) + fx * (fetch(c + sz + sy + 1, o) - fetch(c + sz + sy, o));
+    const V k{};
+    const V c00 = fetch(c, o, k) + fx * (fetch(c + 1, o, k) - fetch(c, o, k));
+    const V c10 = fetch(c + sy, o, k) + fx * (fetch(c + sy + 1, o, k) - fetch(c + sy, o, k));
+    const V c01 = fetch(c + sz, o, k) + fx * (fetch(c + sz + 1, o, k) - fetch(c + sz, o, k));
+    const V c11 = fetch(c + sz + sy, o, k) + fx * (fetch(c + sz + sy + 1, o, k) - fetch(c + sz + sy, o, k));
     const V c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
     return c0 + fz * (c1 - c0);
   }
+#pragma GCC diagnostic pop
 
   DensityModel model_;
   std::uint64_t seed_;
