@@ -130,7 +130,7 @@ template <class V>
   }
 }
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#if CLOUDLUT_AVX2_LANES
 // Eight chords at once (AVX2; no fused multiply-add): integrateChords4's bits.
 __attribute__((target("avx2"))) void integrateChords8(const ReferenceParticle& particle, const glm::vec3 S[8],
                                                       const glm::vec3 v[8], int steps, ChordIntegral out[8]) {

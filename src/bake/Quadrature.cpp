@@ -149,7 +149,7 @@ float sunlitPanels4(const SunlitRay& q) {
   return sum;
 }
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#if CLOUDLUT_AVX2_LANES
 // GCC warns that 32-byte vectors passed without AVX change the ABI; they are passed only inside
 // the AVX2 function below (its helpers are always inlined). It reports this at the end of the
 // file, so the warning stays off to the end.
@@ -203,7 +203,7 @@ double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm
   q.edges[0] = 0.0f;
   q.edges[1] = q.panels == 1 ? U : U / 4.0f;
   q.edges[2] = U;
-#if defined(__x86_64__) && defined(__GNUC__)
+#if CLOUDLUT_AVX2_LANES
   static const bool avx2 = __builtin_cpu_supports("avx2");
   if (avx2) return sunlitPanels8(q);
 #endif

@@ -107,7 +107,7 @@ void SphereField::locateRay(const glm::dvec3& x, const glm::dvec3& w, double wh,
   locateRayLanes<Float4>(x, w, wh, s, n, out);
 }
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#if CLOUDLUT_AVX2_LANES
 __attribute__((target("avx2"))) void SphereField::locateRayAvx2(const glm::dvec3& x, const glm::dvec3& w, double wh,
                                                                 const double* s, int n, FieldPoint* out) const {
   locateRayLanes<Float8>(x, w, wh, s, n, out);
@@ -116,7 +116,7 @@ __attribute__((target("avx2"))) void SphereField::locateRayAvx2(const glm::dvec3
 
 void SphereField::locateRay8(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
                              FieldPoint* out) const {
-#if defined(__x86_64__) && defined(__GNUC__)
+#if CLOUDLUT_AVX2_LANES
   static const bool avx2 = __builtin_cpu_supports("avx2");
   if (avx2) return locateRayAvx2(x, w, wh, s, n, out);
 #endif

@@ -12,6 +12,16 @@ typedef std::int32_t Int4 __attribute__((vector_size(16)));
 // Eight floats, for code compiled for AVX2 (target attribute) and chosen at run time.
 typedef float Float8 __attribute__((vector_size(32)));
 
+// 1 where the eight-lane AVX2 paths are compiled: GCC on x86-64 (each chosen at run time by
+// __builtin_cpu_supports). Clang rejects 32-byte vectors passed through the always-inlined
+// helpers outside AVX code, so its builds (the sanitizer build) take the four-lane paths, which
+// give the same bits.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define CLOUDLUT_AVX2_LANES 1
+#else
+#define CLOUDLUT_AVX2_LANES 0
+#endif
+
 inline Float4 loadFloat4(const float* p) {
   Float4 v;
   std::memcpy(&v, p, sizeof v);
