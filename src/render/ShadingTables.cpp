@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/Errors.h"
+#include "core/LastMatter.h"
 #include "core/Defaults.h"
 #include "core/Phase.h"
 #include "core/TableLookup.h"
@@ -70,7 +71,7 @@ ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, co
   laterAsymmetry_ = std::clamp(meanCosine(later), 0.0f, 0.99f);
 
   try {
-    opticalDepth_ = upload(context, od, false);
+    opticalDepth_ = upload(context, withLastMatterChannel(od), false);  // + last matter: one fetch per chord
     single_ = upload(context, l1, true);
     multiple_ = upload(context, lm, true);
   } catch (...) {

@@ -88,7 +88,7 @@ void main() {
   // same direction v): τ_front = front · τ_chord (dimensionless), and everything below (the
   // scattered radiance through 1 − e^{−τ}, the mean scattering point) uses τ_front with the
   // chord's table entries. Exact for a homogeneous particle.
-  vec2 od = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(S, v), uOpticalDepthDims).xy;
+  vec3 od = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(S, v), uOpticalDepthDims).xyz;
   float chord = chordLength(S, v);
   float tau = front * particleOpticalDepth(rho, uUnitOpticalRadius, chord, od.x);
   tau *= particleDetailFactor(uEye, dir, tNear, tExit);  // detail noise: particle_detail.glsl
@@ -96,11 +96,11 @@ void main() {
 
   // Where the light is scattered on average along the chord (world point): its first matter,
   // then the e^{−τt}-weighted mean of the stretch up to its last matter. Inside, the matter
-  // starts at the eye. The last matter is the first matter of the same chord read from its exit
-  // (a share of the whole chord, so of the seen part divided by `front`).
+  // starts at the eye. The last matter is the texture's channel 2 (core/LastMatter.h), a share
+  // of the whole chord; the empty stretch after it, 1 − last, is of the seen part 1/front times
+  // as much.
   float firstMatter = inside ? 0.0 : clamp(od.y, 0.0, 1.0);
-  float lastFromExit = cloudlutSample4D(uOpticalDepth, opticalDepthAxes(normalize(o + tExit * d), -v), uOpticalDepthDims).y;
-  float lastMatter = 1.0 - min(clamp(lastFromExit, 0.0, 1.0) / max(front, 1e-6), 1.0 - firstMatter);
+  float lastMatter = 1.0 - min((1.0 - clamp(od.z, 0.0, 1.0)) / max(front, 1e-6), 1.0 - firstMatter);
   float tMean = tNear + (tExit - tNear) * (firstMatter + (lastMatter - firstMatter) * meanScatteringFraction(tau));
   vec3 xMean = uEye + dir * tMean;
 

@@ -6,8 +6,9 @@
 // The chord of the sun ray of column (i, j) of a cascade (toWorld: grid → world) through the
 // ellipsoid x = centre + M·p (toParticle = M⁻¹): false when it misses. Otherwise its optical
 // depth tauChord (seed eq. 1, from the optical-depth table: ρ·σ·L·T̄) and the slice coordinates
-// of its first matter (wFirst, on the sun side) and of its last matter (wFar < wFirst: the
-// first matter of the same chord read from its far end).
+// of its first matter (wFirst, on the sun side) and of its last matter (wFar < wFirst), from
+// the table's channels 1 and 2 (the renderer's texture holds the derived last matter,
+// core/LastMatter.h).
 // dwds: slices per world unit along the sun.
 bool sunColumnChord(sampler3D opticalDepth, vec4 opticalDepthDims, float sigma, mat4 toWorld, float dwds, vec2 ij,
                     vec3 centre, mat3 toParticle, float rho, vec3 sun, out float tauChord, out float wFirst,
@@ -24,15 +25,12 @@ bool sunColumnChord(sampler3D opticalDepth, vec4 opticalDepthDims, float sigma, 
   float sSun = (-b + root) / a, sFar = (-b - root) / a;  // world distances along l from w = 0
   vec3 S = normalize(o + sSun * dl);
   vec3 v = -normalize(dl);
-  vec2 od = cloudlutSample4D(opticalDepth, opticalDepthAxes(S, v), opticalDepthDims).xy;
+  vec3 od = cloudlutSample4D(opticalDepth, opticalDepthAxes(S, v), opticalDepthDims).xyz;
   tauChord = particleOpticalDepth(rho, sigma, chordLength(S, v), od.x);
-  // The chord's last matter: the first matter of the same chord read from its far end.
-  vec3 E = normalize(o + sFar * dl);
-  float lastFromFar = clamp(cloudlutSample4D(opticalDepth, opticalDepthAxes(E, -v), opticalDepthDims).y, 0.0, 1.0);
   float wSun = sSun * dwds, wExit = sFar * dwds;
-  float first = clamp(od.y, 0.0, 1.0);
+  float first = clamp(od.y, 0.0, 1.0), last = clamp(od.z, first, 1.0);  // channels 1 and 2 (core/LastMatter.h)
   wFirst = wSun - first * (wSun - wExit);
-  wFar = wExit + min(lastFromFar, 1.0 - first) * (wSun - wExit);
+  wFar = wSun - last * (wSun - wExit);
   // At least one slice long, about the same middle, within the chord: the volume resolves no
   // less, and a shorter ramp's two deltas would cancel in fixed point.
   if (wFirst - wFar < 1.0) {
