@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "core/Errors.h"
-#include "core/LastMatter.h"
 #include "core/Defaults.h"
 #include "core/Phase.h"
 #include "core/TableLookup.h"
+#include "render/LastMatterTexture.h"
 
 namespace cloudlut::render {
 
@@ -71,7 +71,7 @@ ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, co
   laterAsymmetry_ = std::clamp(meanCosine(later), 0.0f, 0.99f);
 
   try {
-    opticalDepth_ = upload(context, withLastMatterChannel(od), false);  // + last matter: one fetch per chord
+    opticalDepth_ = upload(context, od, false);
     single_ = upload(context, l1, true);
     multiple_ = upload(context, lm, true);
   } catch (...) {
@@ -96,8 +96,10 @@ ShadingTables::Texture ShadingTables::upload(const GlContext& context, const Tab
   for (float v : table.data())
     if (!std::isfinite(v)) throw FileError(luts_, table.name() + ": holds a non-finite value");
   Texture t;
-  t.texture = createFloatTexture3D(gl_, context, table.name(), d[0], d[1], static_cast<long long>(d[2]) * d[3],
-                                   channels, table.data().data());
+  // the optical-depth table with its last matter derived (LastMatterTexture.h)
+  t.texture = scattering ? createFloatTexture3D(gl_, context, table.name(), d[0], d[1],
+                                               static_cast<long long>(d[2]) * d[3], channels, table.data().data())
+                         : createOpticalDepthTexture(gl_, context, table);
   t.dims = glm::vec4(d[0], d[1], d[2], d[3]);
   if (scattering) {
     t.scatteringAxes = scatteringAxesRecord(table);  // density range, θS warp, layout flags

@@ -2,7 +2,7 @@
 // The three tables the particle pass shades with (seed §4.4), as 3D textures in their file
 // layout (axes 0, 1 and 2·3 folded into one: texel (i0, i1, i2 + N2·i3)); the optical-depth
 // texture carries a third channel, the last matter derived from the file's two
-// (core/LastMatter.h). With the parameters the shader needs to address and decode them: the
+// (LastMatterTexture.h). With the parameters the shader needs to address and decode them: the
 // optical-depth table's unit optical radius
 // σ = extinction_per_m · radius_m, the scattering tables' density axis (log2 ρ at its ends) and θS
 // warp, and the single table's first phase function.
