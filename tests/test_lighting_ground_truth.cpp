@@ -54,6 +54,19 @@ render::RenderSettings settingsFor(const scene::View& view, int width, int heigh
   return rs;
 }
 
+// A bench scene (data/bench_scenes/<name>.json).
+scene::Scene benchScene(const std::string& name) {
+  return scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/" + name + ".json");
+}
+
+// The path tracer's image of the particles seen from `view`, `spp` paths per pixel.
+io::ExrImage pathTraced(const scene::Scene& s, const scene::View& view, const Medium& medium, int spp, int width,
+                        int height) {
+  reference::ScenePtSettings pt;
+  pt.samplesPerPixel = spp;
+  return reference::renderReferenceScene(s.particles, view, medium, pt, width, height);
+}
+
 }  // namespace
 
 TEST_CASE("lighting: the cloud model meets the path tracer where the seed's model misses", "[render][lighting]") {
@@ -71,11 +84,9 @@ TEST_CASE("lighting: the cloud model meets the path tracer where the seed's mode
   const Case cases[] = {{"one-rho1", 256, 0.12, 0.07, 0.22}, {"cluster", 128, 0.15, 0.08, 0.15}};
   for (const Case& c : cases) {
     INFO(c.scene);
-    const scene::Scene s = scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/" + c.scene + ".json");
+    const scene::Scene s = benchScene(c.scene);
     const scene::View view = scene::resolveView(s, {});
-    reference::ScenePtSettings pt;
-    pt.samplesPerPixel = c.spp;
-    const io::ExrImage ref = reference::renderReferenceScene(s.particles, view, medium, pt, kWidth, kHeight);
+    const io::ExrImage ref = pathTraced(s, view, medium, c.spp, kWidth, kHeight);
 
     Judged j[2];
     for (const render::LightingModel lighting : {render::LightingModel::Seed, render::LightingModel::Cloud}) {
@@ -108,11 +119,9 @@ TEST_CASE("lighting: the backlit rim's single scattering against the path tracer
   constexpr int kRimWidth = 96, kRimHeight = 64;
   const Medium medium;
   RenderFixture rig = RenderFixture::defaultMedium(0);
-  const scene::Scene s = scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/backlit.json");
+  const scene::Scene s = benchScene("backlit");
   const scene::View view = scene::resolveView(s, {});
-  reference::ScenePtSettings pt;
-  pt.samplesPerPixel = 64;
-  const io::ExrImage ref = reference::renderReferenceScene(s.particles, view, medium, pt, kRimWidth, kRimHeight);
+  const io::ExrImage ref = pathTraced(s, view, medium, 64, kRimWidth, kRimHeight);
   const std::vector<float>& refSingle = ref.channel("single");
   const std::vector<float>& refAlpha = ref.channel("A");
 
@@ -143,14 +152,12 @@ TEST_CASE("lighting: the backlit rim's single scattering against the path tracer
 TEST_CASE("lighting: the ambient under a sky from above against the path tracer", "[render][lighting]") {
   const Medium medium;
   RenderFixture rig = RenderFixture::defaultMedium(0);
-  const scene::Scene s = scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/cluster.json");
+  const scene::Scene s = benchScene("cluster");
   scene::View view = scene::resolveView(s, {});
   view.lighting.sunColor = glm::vec3(0.0f);
   view.lighting.skyColor = glm::vec3(1.0f);
   view.lighting.skyBelow = glm::vec3(0.1f);
-  reference::ScenePtSettings pt;
-  pt.samplesPerPixel = 64;
-  const io::ExrImage ref = reference::renderReferenceScene(s.particles, view, medium, pt, kWidth, kHeight);
+  const io::ExrImage ref = pathTraced(s, view, medium, 64, kWidth, kHeight);
   Judged j[2];
   for (const float below : {1.0f, 0.1f}) {
     scene::View rendered = view;
@@ -201,11 +208,9 @@ TEST_CASE("lighting: no step between overlapping particles that the path tracer 
   constexpr int kW = 96, kH = 64;
   const Medium medium;
   RenderFixture rig = RenderFixture::defaultMedium(0);
-  const scene::Scene s = scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/two.json");
+  const scene::Scene s = benchScene("two");
   const scene::View view = scene::resolveView(s, {});
-  reference::ScenePtSettings pt;
-  pt.samplesPerPixel = 512;
-  const io::ExrImage ref = reference::renderReferenceScene(s.particles, view, medium, pt, kW, kH);
+  const io::ExrImage ref = pathTraced(s, view, medium, 512, kW, kH);
   const std::vector<double> refR = boxMean(ref.channel("R"), kW, kH, 1, false);
   const std::vector<double> refSe = boxMean(ref.channel("stderr.R"), kW, kH, 1, true);
   const std::vector<float>& refA = ref.channel("A");
