@@ -111,8 +111,9 @@ TEST_CASE("lighting: the cloud model meets the path tracer where the seed's mode
 // noisy than the total). The homogeneous sphere at the chord's mean density (the table alone,
 // the seed's single term) measured −24% at 96×64 (docs/LIGHTING.md): the particle's thin
 // outskirts pass more sunlight than that sphere. The cloud model's singleSunTransmittance
-// measured +4% with the default tables at 96×64; with this fixture's coarser optical-depth table
-// (32×16×32×16, which blurs the rim) +13%, against −20% for the table alone.
+// measured +4% with the default tables at 96×64 (2026-12-02); with this fixture's coarser
+// optical-depth table (32×16×32×16, which blurs the rim) −3.1% since the chords end at their last
+// matter (2026-12-03), against −20% for the table alone.
 TEST_CASE("lighting: the backlit rim's single scattering against the path tracer", "[render][lighting]") {
   // The rim is a thin crescent: at the bench's 96×64 it covers enough pixel centres for its sum
   // to be stable (at 64×44 the sampled sum moved the ratio by 9 points).
