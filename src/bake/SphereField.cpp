@@ -28,10 +28,7 @@ double RadialAxis::qOfDepth(double d) const {
   return A_ > 1e-9 ? alpha_ * d + (1.0 - alpha_) * std::log1p(A_ * d) / logA_ : d;
 }
 
-// GCC warns that 32-byte vectors passed without AVX change the ABI; they are passed only inside
-// SphereField::locateRayAvx2, compiled for AVX2 (its helpers are always inlined). It reports this
-// at the calls and at the end of the file, so the warning stays off from here on.
-#pragma GCC diagnostic ignored "-Wpsabi"
+// Float8 instances below run only inside SphereField::locateRayAvx2 (-Wpsabi: Float4.h).
 
 template <class V>
 [[gnu::always_inline]] inline V RadialAxis::coordinatesLanes(V r) const {
@@ -71,7 +68,7 @@ template <class V>
   // The points in double, their angles and depth coordinates in single precision, as many
   // lanes at once as V has (a node coordinate off by 1e-6 of a cell moves nothing that
   // matters); unused lanes repeat the last point.
-  constexpr int N = static_cast<int>(sizeof(V) / sizeof(float));
+  constexpr int N = floatLanes<V>();
   V rho, z, r, num, den;
   for (int k = 0; k < N; ++k) {
     const double sk = s[std::min(k, n - 1)];
@@ -117,8 +114,7 @@ __attribute__((target("avx2"))) void SphereField::locateRayAvx2(const glm::dvec3
 void SphereField::locateRay8(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
                              FieldPoint* out) const {
 #if CLOUDLUT_AVX2_LANES
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return locateRayAvx2(x, w, wh, s, n, out);
+  if (cpuHasAvx2Lanes()) return locateRayAvx2(x, w, wh, s, n, out);
 #endif
   locateRayLanes<Float4>(x, w, wh, s, std::min(n, 4), out);
   if (n > 4) locateRayLanes<Float4>(x, w, wh, s + 4, n - 4, out + 4);
