@@ -62,6 +62,34 @@ FieldPoint SphereField::locate(const glm::dvec3& y, const glm::dvec3& w, double 
   return p;
 }
 
+namespace {
+// cubicWeights at every lane of x: the same operations lane by lane (each of its three cases
+// computed and the lane's own chosen), so the same bits; start per lane in `start`, weight c of
+// lane k in w[c][k].
+template <class V>
+[[gnu::always_inline]] inline void cubicWeightsLanes(V x, int n, decltype(V{} < V{})& start, V w[4]) {
+  using I = decltype(V{} < V{});
+  I i = __builtin_convertvector(x, I);
+  i = i < 0 ? I{} : i;
+  i = i > n - 2 ? I{} + (n - 2) : i;
+  V f = x - __builtin_convertvector(i, V);
+  f = f < 0.0f ? V{} : f;
+  f = 1.0f < f ? V{} + 1.0f : f;
+  const I first = i == 0, last = i == n - 2;
+  const V y = f + 1.0f;  // relative to node n − 3
+  const V f2 = f * f, f3 = f2 * f;
+  const V m0 = (-f3 + 2 * f2 - f) / 2, m1 = (3 * f3 - 5 * f2 + 2) / 2, m2 = (-3 * f3 + 4 * f2 + f) / 2,
+          m3 = (f3 - f2) / 2;
+  const V a0 = (f - 1) * (f - 2) / 2, a1 = -f * (f - 2), a2 = f * (f - 1) / 2;
+  const V b1 = (y - 1) * (y - 2) / 2, b2 = -y * (y - 2), b3 = y * (y - 1) / 2;
+  w[0] = first ? a0 : (last ? V{} : m0);
+  w[1] = first ? a1 : (last ? b1 : m1);
+  w[2] = first ? a2 : (last ? b2 : m2);
+  w[3] = first ? V{} : (last ? b3 : m3);
+  start = first ? I{} : (last ? I{} + (n - 4) : i - 1);
+}
+}  // namespace
+
 template <class V>
 [[gnu::always_inline]] inline void SphereField::locateRayLanes(const glm::dvec3& x, const glm::dvec3& w, double wh,
                                                                const double* s, int n, FieldPoint* out) const {
@@ -84,11 +112,19 @@ template <class V>
   const V qr = radial_.coordinatesLanes(r);
   const V qt = float4_detail::atan2Lanes(rho, z) * static_cast<float>((nt_ - 1) / kPi);
   const V phi = float4_detail::atan2Lanes(num, den);
+  using I = decltype(V{} < V{});
+  I irs, its;
+  V wr[4], wt[4];
+  cubicWeightsLanes(qr, nr_, irs, wr);
+  cubicWeightsLanes(qt, nt_, its, wt);
   for (int k = 0; k < n; ++k) {
     FieldPoint& p = out[k];
-    int ir, it, ib;
-    cubicWeights(qr[k], nr_, ir, p.wr);
-    cubicWeights(qt[k], nt_, it, p.wt);
+    const int ir = irs[k], it = its[k];
+    int ib;
+    for (int c = 0; c < 4; ++c) {
+      p.wr[c] = wr[c][k];
+      p.wt[c] = wt[c][k];
+    }
     // folded to [0, π]; 0 on the axis or for a direction along l
     const float phik = rho[k] > 1e-12f && wh > 1e-12 ? std::abs(phi[k]) : 0.0f;
     double fb;
