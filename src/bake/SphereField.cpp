@@ -92,15 +92,17 @@ template <class V>
 
 template <class V>
 [[gnu::always_inline]] inline void SphereField::locateRayLanes(const glm::dvec3& x, const glm::dvec3& w, double wh,
-                                                               const double* s, int n, FieldPoint* out) const {
+                                                               const double* s, int n, FieldPoint* out,
+                                                               const glm::dvec3* origins) const {
   // The points in double, their angles and depth coordinates in single precision, as many
   // lanes at once as V has (a node coordinate off by 1e-6 of a cell moves nothing that
   // matters); unused lanes repeat the last point.
   constexpr int N = floatLanes<V>();
   V rho, z, r, num, den;
   for (int k = 0; k < N; ++k) {
-    const double sk = s[std::min(k, n - 1)];
-    const glm::dvec3 y = x - sk * w;
+    const int kk = std::min(k, n - 1);
+    const double sk = s[kk];
+    const glm::dvec3 y = (origins ? origins[kk] : x) - sk * w;
     const double rho2 = y.x * y.x + y.y * y.y;
     rho[k] = static_cast<float>(std::sqrt(rho2));
     r[k] = static_cast<float>(std::sqrt(rho2 + y.z * y.z));
@@ -142,18 +144,29 @@ void SphereField::locateRay(const glm::dvec3& x, const glm::dvec3& w, double wh,
 
 #if CLOUDLUT_AVX2_LANES
 __attribute__((target("avx2"))) void SphereField::locateRayAvx2(const glm::dvec3& x, const glm::dvec3& w, double wh,
-                                                                const double* s, int n, FieldPoint* out) const {
-  locateRayLanes<Float8>(x, w, wh, s, n, out);
+                                                                const double* s, int n, FieldPoint* out,
+                                                                const glm::dvec3* origins) const {
+  locateRayLanes<Float8>(x, w, wh, s, n, out, origins);
 }
 #endif
 
 void SphereField::locateRay8(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
                              FieldPoint* out) const {
 #if CLOUDLUT_AVX2_LANES
-  if (cpuHasAvx2Lanes()) return locateRayAvx2(x, w, wh, s, n, out);
+  if (cpuHasAvx2Lanes()) return locateRayAvx2(x, w, wh, s, n, out, nullptr);
 #endif
   locateRayLanes<Float4>(x, w, wh, s, std::min(n, 4), out);
   if (n > 4) locateRayLanes<Float4>(x, w, wh, s + 4, n - 4, out + 4);
+}
+
+void SphereField::locatePoints8(const glm::dvec3* y, const glm::dvec3& w, double wh, int n, FieldPoint* out) const {
+  // locate(y, w, wh) reads the point y − 0·w: the same zeros here, so the same bits.
+  const double zeros[8] = {};
+#if CLOUDLUT_AVX2_LANES
+  if (cpuHasAvx2Lanes()) return locateRayAvx2(y[0], w, wh, zeros, n, out, y);
+#endif
+  locateRayLanes<Float4>(y[0], w, wh, zeros, std::min(n, 4), out, y);
+  if (n > 4) locateRayLanes<Float4>(y[4], w, wh, zeros, n - 4, out + 4, y + 4);
 }
 
 }  // namespace cloudlut::bake
