@@ -13,6 +13,7 @@ namespace cloudlut::bake {
 // (SSE, no FMA) sums rows in groups of 8 over k = 0, 1, …, inDirs − 1 in turn, starting from 0;
 // a last group of 4 rows sums even k and odd k apart up to inDirs rounded down to 8, adds the
 // two, then adds the remaining k in turn. The result is 0 + 1·sum, which equals the sum.
+#if CLOUDLUT_AVX2_LANES
 namespace {
 
 constexpr int kPeel = 8;  // Eigen's depth peeling
@@ -60,6 +61,7 @@ template <int B>
 }
 
 }  // namespace
+#endif
 
 bool phaseProductAvx2Applies(int outDirs, int inDirs, int nt) {
   if (!cpuHasAvx2Lanes() || outDirs % 4 != 0 || nt % 4 != 0) return false;

@@ -13,7 +13,7 @@ typedef std::int32_t Int4 __attribute__((vector_size(16)));
 typedef float Float8 __attribute__((vector_size(32)));
 
 // 1 where the eight-lane AVX2 paths are compiled: GCC on x86-64 (each chosen at run time by
-// __builtin_cpu_supports). Clang rejects 32-byte vectors passed through the always-inlined
+// cpuHasAvx2Lanes below). Clang rejects 32-byte vectors passed through the always-inlined
 // helpers outside AVX code, so its builds (the sanitizer build) take the four-lane paths, which
 // give the same bits.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
