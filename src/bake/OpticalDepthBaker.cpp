@@ -41,10 +41,7 @@ ChordIntegral integrateChord(const ReferenceParticle& particle, const glm::vec3&
   return out[0];
 }
 
-// GCC warns that 32-byte vectors passed without AVX change the ABI; they are passed only inside
-// integrateChords8 below, compiled for AVX2 (its helpers are always inlined). It reports this at
-// the calls and at the end of the file, so the warning stays off from here on.
-#pragma GCC diagnostic ignored "-Wpsabi"
+// Float8 instances below run only inside integrateChords8 (-Wpsabi: Float4.h).
 
 namespace {
 
@@ -55,7 +52,7 @@ template <class V>
 [[gnu::always_inline]] inline void integrateChordLanes(const ReferenceParticle& particle, const glm::vec3* S,
                                                        const glm::vec3* v, int steps, ChordIntegral* out) {
   using I = decltype(V{} < V{});
-  constexpr int N = static_cast<int>(sizeof(V) / sizeof(float));
+  constexpr int N = floatLanes<V>();
   // N chords side by side, each lane on its own panels (a lane past its last panel idles).
   const float threshold = defaults::kFirstMatterThreshold;
   V sx, sy, sz, vx, vy, vz, L, h;
@@ -136,10 +133,9 @@ __attribute__((target("avx2"))) void integrateChords8(const ReferenceParticle& p
                                                       const glm::vec3 v[8], int steps, ChordIntegral out[8]) {
   integrateChordLanes<Float8>(particle, S, v, steps, out);
 }
-bool haveChords8() { return __builtin_cpu_supports("avx2"); }
 #else
+// Never called: cpuHasAvx2Lanes() is false where the AVX2 paths are not compiled.
 void integrateChords8(const ReferenceParticle&, const glm::vec3*, const glm::vec3*, int, ChordIntegral*) {}
-bool haveChords8() { return false; }
 #endif
 
 }  // namespace
@@ -182,7 +178,7 @@ Table4D bakeOpticalDepth(const ReferenceParticle& particle, const OpticalDepthSe
     }
 
   // Eight chords at once where the processor has AVX2 (the same values: integrateChords8).
-  const int lanes = haveChords8() ? 8 : 4;
+  const int lanes = cpuHasAvx2Lanes() ? 8 : 4;
   const int slices = d[2] * d[3];
   std::atomic<int> done{0};
   tbb::parallel_for(tbb::blocked_range<int>(0, slices, 1), [&](const tbb::blocked_range<int>& r) {

@@ -150,10 +150,6 @@ float sunlitPanels4(const SunlitRay& q) {
 }
 
 #if CLOUDLUT_AVX2_LANES
-// GCC warns that 32-byte vectors passed without AVX change the ABI; they are passed only inside
-// the AVX2 function below (its helpers are always inlined). It reports this at the end of the
-// file, so the warning stays off to the end.
-#pragma GCC diagnostic ignored "-Wpsabi"
 // sunlitPanels4 with the eight nodes of a panel in one AVX2 vector: every lane by the same
 // operations (no fused multiply-add), the same sums in the same order, so the same bits.
 __attribute__((target("avx2"))) float sunlitPanels8(const SunlitRay& q) {
@@ -204,8 +200,7 @@ double sunlitRayIntegralFast(const glm::dvec3& x, const glm::dvec3& d, const glm
   q.edges[1] = q.panels == 1 ? U : U / 4.0f;
   q.edges[2] = U;
 #if CLOUDLUT_AVX2_LANES
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return sunlitPanels8(q);
+  if (cpuHasAvx2Lanes()) return sunlitPanels8(q);
 #endif
   return sunlitPanels4(q);
 }

@@ -135,13 +135,17 @@ class SphereField {
   // The same for n ≤ 8 points: eight lanes at once where the processor has AVX2, else two
   // locateRay calls (the same values either way).
   void locateRay8(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n, FieldPoint* out) const;
+  // locate(y[k], w, wh) at n ≤ 8 points for one direction (the same values), eight lanes at once
+  // where the processor has AVX2.
+  void locatePoints8(const glm::dvec3* y, const glm::dvec3& w, double wh, int n, FieldPoint* out) const;
 
  private:
+  // The points x − s[k]·w, or y[k] − s[k]·w where origins y is given (then s holds zeros).
   template <class V>
-  void locateRayLanes(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
-                      FieldPoint* out) const;
-  void locateRayAvx2(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n,
-                     FieldPoint* out) const;
+  void locateRayLanes(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n, FieldPoint* out,
+                      const glm::dvec3* origins = nullptr) const;
+  void locateRayAvx2(const glm::dvec3& x, const glm::dvec3& w, double wh, const double* s, int n, FieldPoint* out,
+                     const glm::dvec3* origins) const;
   int nr_, nt_;
   const DirectionGrid* directions_;
   RadialAxis radial_;

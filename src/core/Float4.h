@@ -13,7 +13,7 @@ typedef std::int32_t Int4 __attribute__((vector_size(16)));
 typedef float Float8 __attribute__((vector_size(32)));
 
 // 1 where the eight-lane AVX2 paths are compiled: GCC on x86-64 (each chosen at run time by
-// __builtin_cpu_supports). Clang rejects 32-byte vectors passed through the always-inlined
+// cpuHasAvx2Lanes below). Clang rejects 32-byte vectors passed through the always-inlined
 // helpers outside AVX code, so its builds (the sanitizer build) take the four-lane paths, which
 // give the same bits.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -21,6 +21,34 @@ typedef float Float8 __attribute__((vector_size(32)));
 #else
 #define CLOUDLUT_AVX2_LANES 0
 #endif
+
+// Whether the eight-lane paths may run: compiled (CLOUDLUT_AVX2_LANES) and the processor has
+// AVX2 (asked once). Every AVX2 kernel of the bake is chosen by this.
+inline bool cpuHasAvx2Lanes() {
+#if CLOUDLUT_AVX2_LANES
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2;
+#else
+  return false;
+#endif
+}
+
+// The number of float lanes of the float vector type V: 4 for Float4, 8 for Float8.
+template <class V>
+constexpr int floatLanes() {
+  return static_cast<int>(sizeof(V) / sizeof(float));
+}
+
+// GCC's -Wpsabi: passing a 32-byte vector (Float8) by value to or from a function not compiled
+// for AVX would change the ABI, and GCC warns at such calls and adds the note "the ABI for
+// passing parameters with 32-byte alignment has changed in GCC 4.6" where a function takes one.
+// Here wide vectors are passed only between always-inlined helpers inside functions compiled
+// with target("avx2"), so no such call is ever made. Templates that take wide vectors sit
+// between these two macros (in any header); the files that instantiate them for Float8 are
+// compiled with -Wno-psabi (CMakeLists.txt, the bake room), since GCC prints the note whatever
+// the pragmas say.
+#define CLOUDLUT_WIDE_VECTORS_BEGIN _Pragma("GCC diagnostic push") _Pragma("GCC diagnostic ignored \"-Wpsabi\"")
+#define CLOUDLUT_WIDE_VECTORS_END _Pragma("GCC diagnostic pop")
 
 inline Float4 loadFloat4(const float* p) {
   Float4 v;
@@ -59,10 +87,8 @@ Float4 atan2Float4(Float4 y, Float4 x);
 // (the J_2 ray integrals, the stencils' locate), where a call per four lanes cost ~10% of them.
 // exp and log are written once for any float vector (expLanes, logLanes): four lanes here, eight
 // in the AVX2 paths (Float8), each lane by the same operations.
-// Always inlined: instantiated for Float8 they run inside AVX2 functions only (the warning
-// about passing 32-byte vectors without AVX concerns out-of-line calls, which never happen).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
+// Always inlined: instantiated for Float8 they run inside AVX2 functions only.
+CLOUDLUT_WIDE_VECTORS_BEGIN
 namespace float4_detail {
 // ln 2 = kLn2Hi + kLn2Lo, kLn2Hi with few mantissa bits (n · kLn2Hi exact for |n| < 2^9).
 constexpr float kLn2Hi = 0.693359375f, kLn2Lo = -2.12194440e-4f;
@@ -131,15 +157,14 @@ template <class V>
   return (z + y) + fe * kLn2Hi;
 }
 }  // namespace float4_detail
-#pragma GCC diagnostic pop
+CLOUDLUT_WIDE_VECTORS_END
 
 inline Float4 expFloat4(Float4 x) { return float4_detail::expLanes(x); }
 
 inline Float4 logFloat4(Float4 x) { return float4_detail::logLanes(x); }
 
 namespace float4_detail {
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
+CLOUDLUT_WIDE_VECTORS_BEGIN
 // atan2Float4 for a float vector V of any width.
 template <class V>
 [[gnu::always_inline]] inline V atan2Lanes(V y, V x) {
@@ -157,7 +182,7 @@ template <class V>
   r = x < 0.0f ? 3.14159265358979324f - r : r;
   return y < 0.0f ? -r : r;
 }
-#pragma GCC diagnostic pop
+CLOUDLUT_WIDE_VECTORS_END
 }  // namespace float4_detail
 
 inline Float4 atan2Float4(Float4 y, Float4 x) { return float4_detail::atan2Lanes(y, x); }

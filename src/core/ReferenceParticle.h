@@ -59,10 +59,8 @@ class ReferenceParticle {
   Float4 density4(Float4 x, Float4 y, Float4 z) const { return densityLanes<Float4>(x, y, z); }
 
   // density4 for a float vector V of any width (Float8 in AVX2 code): the same per lane.
-  // Always inlined, so a wide instance runs in its caller's instruction set (GCC's warning about
-  // passing 32-byte vectors without AVX concerns out-of-line calls, which never happen).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
+  // Always inlined, so a wide instance runs in its caller's instruction set (-Wpsabi: Float4.h).
+  CLOUDLUT_WIDE_VECTORS_BEGIN
   template <class V>
   [[gnu::always_inline]] V densityLanes(V x, V y, V z) const {
     using I = decltype(x < x);
@@ -71,13 +69,13 @@ class ReferenceParticle {
     switch (model_) {
       case DensityModel::Sphere: d = V{} + 1.0f; break;
       case DensityModel::Radial:
-        for (int k = 0; k < lanes<V>(); ++k) d[k] = radialFalloff(r2[k]);
+        for (int k = 0; k < floatLanes<V>(); ++k) d[k] = radialFalloff(r2[k]);
         break;
       default: d = gridDensity<V, I>(x, y, z);
     }
     return r2 > 1.0f ? V{} : d;
   }
-#pragma GCC diagnostic pop
+  CLOUDLUT_WIDE_VECTORS_END
 
   // The metaball fall-off (1 - r²)², r² = |p|² (dimensionless).
   static float radialFalloff(float r2) {
@@ -89,12 +87,7 @@ class ReferenceParticle {
   // The trilinear interpolation of the grid at (x, y, z) ∈ [−1, 1]³, for one point (V float,
   // I int) or several (V a float vector, I its int vector); the lane helpers below differ only
   // in how they convert, clamp and fetch (the V argument only chooses the overload).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
-  template <class V>
-  static constexpr int lanes() {
-    return static_cast<int>(sizeof(V) / sizeof(float));
-  }
+  CLOUDLUT_WIDE_VECTORS_BEGIN
   static int truncate(float v) { return static_cast<int>(v); }
   template <class V>
   [[gnu::always_inline]] static auto truncate(V v) {
@@ -116,7 +109,7 @@ class ReferenceParticle {
   template <class I, class V>
   [[gnu::always_inline]] static V fetch(const float* c, I o, V) {
     V v;
-    for (int k = 0; k < lanes<V>(); ++k) v[k] = c[o[k]];
+    for (int k = 0; k < floatLanes<V>(); ++k) v[k] = c[o[k]];
     return v;
   }
 
@@ -138,7 +131,7 @@ class ReferenceParticle {
     const V c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
     return c0 + fz * (c1 - c0);
   }
-#pragma GCC diagnostic pop
+CLOUDLUT_WIDE_VECTORS_END
 
   DensityModel model_;
   std::uint64_t seed_;
