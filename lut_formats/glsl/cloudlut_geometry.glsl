@@ -59,6 +59,14 @@ CLOUDLUT_FN vec3 frameDirection(vec3 x, vec3 y, vec3 S, float phiV, float thetaV
   return sin(thetaV) * (cos(phiV) * x + sin(phiV) * y) - cos(thetaV) * S;
 }
 
+// The direction of the optical-depth table's chord at the node angles (φS, θS, φv, θv) (seed
+// §4.1; radians): frameDirection in the tangent frame of sphericalPoint(φS, θS), the chord's
+// entry. The baker lays its nodes out this way (it caches the frame per entry point); the
+// renderer's last-matter pass and its CPU reference read the nodes back through it.
+CLOUDLUT_FN vec3 opticalDepthNodeDirection(float phiS, float thetaS, float phiV, float thetaV) {
+  return frameDirection(tangentX(phiS, thetaS), tangentY(phiS), sphericalPoint(phiS, thetaS), phiV, thetaV);
+}
+
 // Angles (φv, θv) of direction v in the frame (x, y, -S); θv ∈ [0, π], φv ∈ [0, 2π).
 CLOUDLUT_FN vec2 frameAngles(vec3 x, vec3 y, vec3 S, vec3 v) {
   float vx = dot(v, x);

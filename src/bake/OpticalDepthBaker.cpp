@@ -168,7 +168,8 @@ Table4D bakeOpticalDepth(const ReferenceParticle& particle, const OpticalDepthSe
   params["radius_m"] = settings.radius;
   params["first_matter_threshold"] = defaults::kFirstMatterThreshold;
 
-  // Entry points and frames per (φS, θS) node, directions' angles per (φv, θv) node.
+  // Entry points and frames per (φS, θS) node, directions' angles per (φv, θv) node: the chord
+  // of node (i0..i3) runs along glsl::opticalDepthNodeDirection, its frame cached per entry point.
   struct Frame { glm::vec3 S, x, y; };
   std::vector<Frame> frames(static_cast<std::size_t>(d[0]) * d[1]);
   for (int i1 = 0; i1 < d[1]; ++i1)

@@ -36,39 +36,35 @@ float lookupLastMatter(const Table4D& opticalDepth, const glm::vec3& S, const gl
 
 Table4D withLastMatterChannel(const Table4D& opticalDepth) {
   const auto& axes = opticalDepth.axes();
+  const bool hasFirstMatter = opticalDepth.channelCount() > 1;
   std::vector<Channel> channels(opticalDepth.channels().begin(),
-                                opticalDepth.channels().begin() + std::min(opticalDepth.channelCount(), 2));
-  while (channels.size() < 2) channels.push_back({"first_matter", "absent from the file: 0"});
+                                opticalDepth.channels().begin() + (hasFirstMatter ? 2 : 1));
+  if (!hasFirstMatter) channels.push_back({"first_matter", "absent from the file: 0"});
   channels.push_back({"last_matter", "distance along the chord to the last density >= threshold, divided by the "
                                      "chord length (derived: 1 - first_matter of the reversed chord)"});
   Table4D out(opticalDepth.name(), axes, channels);
   out.parameters() = opticalDepth.parameters();
   const int n0 = axes[0].size, n1 = axes[1].size, n2 = axes[2].size, n3 = axes[3].size;
-  const int inChannels = opticalDepth.channelCount();
-  // Every node's chord (S, v) as the optical-depth baker lays them out (seed §4.1): the entry
-  // point and its tangent frame per (φS, θS) node, computed once.
-  struct Frame { glm::vec3 S, x, y; };
-  std::vector<Frame> frames(static_cast<std::size_t>(n0) * n1);
-  for (int i1 = 0; i1 < n1; ++i1)
-    for (int i0 = 0; i0 < n0; ++i0) {
-      const float phi = static_cast<float>(axes[0].value(i0)), theta = static_cast<float>(axes[1].value(i1));
-      frames[static_cast<std::size_t>(i1) * n0 + i0] = {glsl::sphericalPoint(phi, theta), glsl::tangentX(phi, theta),
-                                                         glsl::tangentY(phi)};
-    }
   tbb::parallel_for(tbb::blocked_range<int>(0, n2 * n3), [&](const tbb::blocked_range<int>& r) {
     for (int slice = r.begin(); slice != r.end(); ++slice) {
       const int i2 = slice % n2, i3 = slice / n2;
-      const float phiV = static_cast<float>(axes[2].value(i2)), thetaV = static_cast<float>(axes[3].value(i3));
       for (int i1 = 0; i1 < n1; ++i1)
         for (int i0 = 0; i0 < n0; ++i0) {
-          const Frame& f = frames[static_cast<std::size_t>(i1) * n0 + i0];
           const std::size_t node = out.index(i0, i1, i2, i3);
           out.at(node, 0) = opticalDepth.at(node, 0);
-          out.at(node, 1) = inChannels > 1 ? opticalDepth.at(node, 1) : 0.0f;
-          // at a node the table's own first matter is the interpolated one
-          out.at(node, 2) = inChannels > 1 ? lastMatterFrom(opticalDepth, f.S, glsl::frameDirection(f.x, f.y, f.S, phiV, thetaV),
-                                                            std::clamp(opticalDepth.at(node, 1), 0.0f, 1.0f))
-                                           : 1.0f;
+          if (!hasFirstMatter) {  // the matter starts at the entry and ends at the exit
+            out.at(node, 1) = 0.0f;
+            out.at(node, 2) = 1.0f;
+            continue;
+          }
+          // the node's chord as the baker laid it out (seed §4.1); at a node the table's own
+          // first matter is the interpolated one
+          const auto angle = [&](int axis, int i) { return static_cast<float>(axes[axis].value(i)); };
+          const float phiS = angle(0, i0), thetaS = angle(1, i1);
+          const glm::vec3 v = glsl::opticalDepthNodeDirection(phiS, thetaS, angle(2, i2), angle(3, i3));
+          const float first = std::clamp(opticalDepth.at(node, 1), 0.0f, 1.0f);
+          out.at(node, 1) = opticalDepth.at(node, 1);
+          out.at(node, 2) = lastMatterFrom(opticalDepth, glsl::sphericalPoint(phiS, thetaS), v, first);
         }
     }
   });

@@ -19,8 +19,10 @@ namespace cloudlut {
 float lookupLastMatter(const Table4D& opticalDepth, const glm::vec3& S, const glm::vec3& v);
 
 // The optical-depth table with a third channel, last_matter = lookupLastMatter at every node
-// (channels 0 and 1 copied). The renderer uploads this table, so that a shader reads a chord's
-// first and last matter in one fetch. Channels beyond the first two of the input are dropped.
+// (channels 0 and 1 copied; a table without a first-matter channel gets first matter 0 and last
+// matter 1). The renderer derives the same channel on the GPU when it loads the tables
+// (render/LastMatterTexture, last_matter.comp.glsl); this is the tests' reference for it.
+// Channels beyond the first two of the input are dropped.
 Table4D withLastMatterChannel(const Table4D& opticalDepth);
 
 }  // namespace cloudlut

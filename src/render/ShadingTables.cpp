@@ -71,9 +71,9 @@ ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, co
   laterAsymmetry_ = std::clamp(meanCosine(later), 0.0f, 0.99f);
 
   try {
-    opticalDepth_ = upload(context, od, false);
-    single_ = upload(context, l1, true);
-    multiple_ = upload(context, lm, true);
+    opticalDepth_ = upload(context, od, TableKind::OpticalDepth);
+    single_ = upload(context, l1, TableKind::Scattering);
+    multiple_ = upload(context, lm, TableKind::Scattering);
   } catch (...) {
     const GLuint textures[] = {opticalDepth_.texture, single_.texture, multiple_.texture};
     gl_.DeleteTextures(3, textures);
@@ -86,7 +86,8 @@ ShadingTables::~ShadingTables() {
   gl_.DeleteTextures(3, textures);
 }
 
-ShadingTables::Texture ShadingTables::upload(const GlContext& context, const Table4D& table, bool scattering) {
+ShadingTables::Texture ShadingTables::upload(const GlContext& context, const Table4D& table, TableKind kind) {
+  const bool scattering = kind == TableKind::Scattering;
   const auto d = table.dims();
   const int channels = table.channelCount();
   if (channels < 1 || channels > 4)

@@ -48,7 +48,10 @@ class ShadingTables {
     glm::vec4 dims{0.0f};
     glm::vec4 scatteringAxes{0.0f};  // scattering table: scatteringAxesRecord (core/TableLookup.h)
   };
-  Texture upload(const GlContext& context, const Table4D& table, bool scattering);
+  // the optical-depth table gets its last matter derived (LastMatterTexture.h); a scattering
+  // table its density axis record
+  enum class TableKind { OpticalDepth, Scattering };
+  Texture upload(const GlContext& context, const Table4D& table, TableKind kind);
   void bindTable(const ProgramUniforms& uniforms, int unit, const char* sampler, const char* dimsName,
                  const Texture& t) const;
 

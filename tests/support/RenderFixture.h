@@ -47,9 +47,11 @@ struct RenderFixture {
   render::Renderer renderer;
 
  private:
+  // tmp() listed: clang's -Wuninitialized does not see a member constructed by default before
+  // another member's initialiser reads it
   template <typename Write>
   explicit RenderFixture(Write write)
-      : luts(readWritten(tmp / "luts", write)), context(render::createHeadlessContext()), renderer(*context, luts) {}
+      : tmp(), luts(readWritten(tmp / "luts", write)), context(render::createHeadlessContext()), renderer(*context, luts) {}
 
   template <typename Write>
   static io::LutSet readWritten(const std::filesystem::path& dir, Write write) {

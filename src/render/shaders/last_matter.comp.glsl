@@ -20,7 +20,7 @@ void main() {
   ivec4 i = ivec4(t.x, t.y, t.z % n.z, t.z / n.z);
   vec4 a = uAxisMin + (uAxisMax - uAxisMin) * vec4(i) / vec4(max(n - 1, ivec4(1)));
   vec3 S = sphericalPoint(a.x, a.y);
-  vec3 v = frameDirection(tangentX(a.x, a.y), tangentY(a.x), S, a.z, a.w);
+  vec3 v = opticalDepthNodeDirection(a.x, a.y, a.z, a.w);
   vec2 od = texelFetch(uOpticalDepth, t, 0).xy;
   vec3 E = normalize(S + chordLength(S, v) * v);
   float firstBack = clamp(cloudlutSample4D(uOpticalDepth, opticalDepthAxes(E, -v), uOpticalDepthDims).y, 0.0, 1.0);
