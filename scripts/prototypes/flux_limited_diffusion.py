@@ -13,7 +13,9 @@ What it computes (conservative medium, albedo 1; lengths in scene units):
   extinction   σ(x) = Σ_i σ0 · ρ_i · ρ̂((x − c_i)/r_i) / r_i     (σ0 = β·R, the unit optical radius)
   δ-Eddington  f = g², σ* = σ·(1 − f), g* = g/(1 + g)             (g the later phase's mean cosine)
   sunlight     E(x) = exp(−τ*(x)), τ* the optical depth σ* toward the sun   (per unit irradiance)
-  diffusion    −∇·(D ∇φ) = σ*·E, D = 1/(3σ*(1 − g*) + |∇φ|/φ)   (Wilson's flux limiter, iterated)
+  source       q = (E(x + l·h/2) − E(x − l·h/2))/h, what the beam loses across a cell (≈ σ*·E;
+               --point-source takes σ*·E at the cell centre)
+  diffusion    −∇·(D ∇φ) = q, D = 1/(3σ*(1 − g*) + |∇φ|/φ)   (Wilson's flux limiter, iterated)
                Marshak (vacuum) faces on the grid's border
   radiance     L = ∫ σ(x) (φ + 3 g J·ω)/(4π) T(t) dt along each view ray, J = −D ∇φ,
                ω the direction toward the eye: orders ≥ 2 only, as the reference's `multiple`.
@@ -131,6 +133,7 @@ def main():
     ap.add_argument('reference', help='prototype_io channels output: R G B A single multiple ambient')
     ap.add_argument('--spacing', type=float, default=0.1, help='grid spacing (scene units)')
     ap.add_argument('--limiter-iterations', type=int, default=16)
+    ap.add_argument('--point-source', action='store_true', help='source at cell centres (the first version)')
     ap.add_argument('--out', help='write the multiple-scattering image (float32, height × width)')
     args = ap.parse_args()
 
@@ -150,8 +153,15 @@ def main():
     sun = np.array(scene['sun']['direction'], float)
     sun /= np.linalg.norm(sun)
     irradiance = scene['sun'].get('color', [1, 1, 1])[0]
-    tau_sun = optical_depth_toward(sig_star, X.reshape(-1, 3), sun, lo, h, np.linalg.norm(hi - lo)).reshape(n)
-    source = sig_star * irradiance * np.exp(-tau_sun)
+    length = np.linalg.norm(hi - lo)
+    if args.point_source:  # σ*·E at the cell centre: misses most of a steep sunlit layer
+        tau_sun = optical_depth_toward(sig_star, X.reshape(-1, 3), sun, lo, h, length).reshape(n)
+        source = sig_star * irradiance * np.exp(-tau_sun)
+    else:  # what the beam loses across the cell: (E(x + l·h/2) − E(x − l·h/2)) / h
+        points = X.reshape(-1, 3)
+        near = optical_depth_toward(sig_star, points + 0.5 * h * sun, sun, lo, h, length).reshape(n)
+        far = optical_depth_toward(sig_star, points - 0.5 * h * sun, sun, lo, h, length).reshape(n)
+        source = irradiance * np.maximum(np.exp(-near) - np.exp(-far), 0) / h
     transport = sig_star * (1 - g_star)
     D = 1.0 / (3 * transport + 1.0 / h)
     for _ in range(args.limiter_iterations):
