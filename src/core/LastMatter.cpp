@@ -45,6 +45,7 @@ Table4D withLastMatterChannel(const Table4D& opticalDepth) {
   Table4D out(opticalDepth.name(), axes, channels);
   out.parameters() = opticalDepth.parameters();
   const int n0 = axes[0].size, n1 = axes[1].size, n2 = axes[2].size, n3 = axes[3].size;
+  const auto angle = [&axes](int axis, int i) { return static_cast<float>(axes[axis].value(i)); };
   tbb::parallel_for(tbb::blocked_range<int>(0, n2 * n3), [&](const tbb::blocked_range<int>& r) {
     for (int slice = r.begin(); slice != r.end(); ++slice) {
       const int i2 = slice % n2, i3 = slice / n2;
@@ -59,7 +60,6 @@ Table4D withLastMatterChannel(const Table4D& opticalDepth) {
           }
           // the node's chord as the baker laid it out (seed §4.1); at a node the table's own
           // first matter is the interpolated one
-          const auto angle = [&](int axis, int i) { return static_cast<float>(axes[axis].value(i)); };
           const float phiS = angle(0, i0), thetaS = angle(1, i1);
           const glm::vec3 v = glsl::opticalDepthNodeDirection(phiS, thetaS, angle(2, i2), angle(3, i3));
           const float first = std::clamp(opticalDepth.at(node, 1), 0.0f, 1.0f);
