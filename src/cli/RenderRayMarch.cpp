@@ -67,6 +67,12 @@ int runRayMarchRender(const cxxopts::ParseResult& args) {
     std::printf("wrote %s: %dx%d, %zu particles, raymarch %d steps%s, render %.1f ms (setup %.1f ms, %s)\n", out.c_str(),
                 image.width, image.height, scene.particles.size(), s.steps, s.adaptive ? " adaptive" : "",
                 1e3 * stats.renderSeconds, 1e3 * setup, context->description().c_str());
+  if (stats.rayMarchDroppedPixels > 0)
+    std::fprintf(stderr, "cloudlut render: warning: %zu pixels crossed more than %d particles on the view ray or %d on a shadow ray; the farthest were left out\n",
+                 stats.rayMarchDroppedPixels, render::kMaxViewHits, render::kMaxShadowHits);
+  if (stats.rayMarchBudgetPixels > 0)
+    std::fprintf(stderr, "cloudlut render: warning: the GL cut the loops of %zu pixels short (llvmpipe allows 65535 loop passes per shader invocation); their march is incomplete: use fewer --steps or --shadow-steps\n",
+                 stats.rayMarchBudgetPixels);
   return kExitOk;
 }
 

@@ -76,6 +76,7 @@ class ProgramUniforms {
   void set(const char* name, GLint value) const { gl_.Uniform1i(location(name), value); }
   void set(const char* name, GLfloat value) const { gl_.Uniform1f(location(name), value); }
   void set(const char* name, const glm::vec3& v) const { gl_.Uniform3f(location(name), v.x, v.y, v.z); }
+  void set(const char* name, const glm::ivec3& v) const { gl_.Uniform3i(location(name), v.x, v.y, v.z); }
   void set(const char* name, const glm::vec4& v) const { gl_.Uniform4f(location(name), v.x, v.y, v.z, v.w); }
   void set(const char* name, const glm::mat4& m) const;
 

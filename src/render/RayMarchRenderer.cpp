@@ -11,6 +11,7 @@
 #include "render/GlResources.h"
 #include "render/GpuParticleRecord.h"
 #include "render/GpuStorage.h"
+#include "render/ParticleCellGrid.h"
 #include "render/Stopwatch.h"
 
 namespace cloudlut::render {
@@ -22,6 +23,8 @@ struct RayMarchRenderer::Impl {
   StorageBudget budget;
   GlProgram program;
   StorageBuffer particles;  // GpuParticleRecord at binding 0
+  StorageBuffer cellStarts, cellParticles;  // the particle cell grid at bindings 1 and 2
+  StorageBuffer counters;   // dropped-list and loop-budget pixels at binding 3
   GLuint vao = 0, densityTexture = 0;
   int modelKind = 0;  // 0 homogeneous, 1 radial, 2 grid
   int gridRes = 0;
@@ -30,9 +33,17 @@ struct RayMarchRenderer::Impl {
       : context(c),
         gl(makeCurrentAndLoadGlFunctions(c)),
         budget(gl, c),
-        program(linkDrawProgram(gl, {"raymarch.vert.glsl"}, {"cloudlut_phase.glsl", "particle_common.glsl", "raymarch.frag.glsl"},
-                                "#define PARTICLES_ACCESS readonly\n", "ray-march")),
-        particles(gl) {
+        program(linkDrawProgram(gl, {"raymarch.vert.glsl"},
+                                {"cloudlut_phase.glsl", "particle_common.glsl", "raymarch_cells.glsl", "raymarch.frag.glsl"},
+                                "#define PARTICLES_ACCESS readonly\n#define MAX_CELLS_PER_AXIS " +
+                                    std::to_string(kMaxCellsPerAxis) + "\n#define MAX_HITS " +
+                                    std::to_string(kMaxViewHits) + "\n#define MAX_SHADOW_HITS " +
+                                    std::to_string(kMaxShadowHits) + "\n",
+                                "ray-march")),
+        particles(gl),
+        cellStarts(gl),
+        cellParticles(gl),
+        counters(gl) {
     requireParticleRecordLayout(gl, program.id(), "ray-march program");
     gl.GenVertexArrays(1, &vao);
     modelKind = model.model() == DensityModel::Sphere ? 0 : model.model() == DensityModel::Radial ? 1 : 2;
@@ -93,6 +104,17 @@ struct RayMarchRenderer::Impl {
     particles.assign(records.empty() ? nullptr : records.data(),
                      std::max<std::size_t>(records.size(), 1) * sizeof(GpuParticleRecord));
     particles.bind(0);
+    // The cell lists: at most a quarter of a storage block, and 2^24 indices.
+    const ParticleCellGrid grid =
+        buildParticleCellGrid(records, std::min<std::size_t>(std::size_t{1} << 24, budget.maxBlockBytes() / 16));
+    cellStarts.assign(grid.cellStart.data(), grid.cellStart.size() * sizeof(std::uint32_t));
+    cellParticles.assign(grid.indices.empty() ? grid.cellStart.data() : grid.indices.data(),
+                         std::max<std::size_t>(grid.indices.size(), 1) * sizeof(std::uint32_t));
+    cellStarts.bind(1);
+    cellParticles.bind(2);
+    const std::uint32_t zero[2] = {0, 0};
+    counters.assign(zero, sizeof zero);
+    counters.bind(3);
     if (stats) stats->uploadSeconds = uploadClock.seconds();
 
     FloatRenderTarget target(gl, context, s.width, s.height);
@@ -102,7 +124,10 @@ struct RayMarchRenderer::Impl {
 
     gl.UseProgram(program.id());
     const ProgramUniforms uniforms(gl, program.id());
-    uniforms.set("uCount", static_cast<GLint>(records.size()));
+    uniforms.set("uGridOrigin", grid.origin);
+    uniforms.set("uGridCell", grid.cellSize);
+    uniforms.set("uGridDims", grid.dims);
+    uniforms.set("uProbePasses", 2);
     uniforms.set("uEye", eye);
     uniforms.set("uRay00", r00);
     uniforms.set("uRayDx", rdx);
@@ -137,7 +162,13 @@ struct RayMarchRenderer::Impl {
     gl.DrawArraysInstanced(GL_TRIANGLES, 0, 3, 1);
     gl.Finish();
     checkGlError(gl, "ray marching");
-    if (stats) stats->renderSeconds = drawClock.seconds();
+    if (stats) {
+      stats->renderSeconds = drawClock.seconds();
+      std::uint32_t counts[2];
+      counters.read(0, sizeof counts, counts);
+      stats->rayMarchDroppedPixels = counts[0];
+      stats->rayMarchBudgetPixels = counts[1];
+    }
 
     const Stopwatch readClock;
     Image image = target.readBack();

@@ -116,6 +116,8 @@ struct RenderStats {
   std::size_t volumePoolBytes = 0;   // volume: bytes of the node pool (one tile's)
   std::size_t tileOverflow = 0;      // occlusion: cover-bin entries dropped (render/LightOcclusion.h)
   std::size_t sunFootprintOverflow = 0;  // sun volume: particle-cascade pairs left to a coarser cascade
+  std::size_t rayMarchDroppedPixels = 0;  // ray marcher: pixels whose view or a shadow ray left particles out
+  std::size_t rayMarchBudgetPixels = 0;   // ray marcher: pixels whose loops the GL cut short
 };
 
 }  // namespace cloudlut::render

@@ -3,11 +3,11 @@
 // extinction is σ·ρ·ρ̂ in its own unit-sphere units, so along a world direction ω it is
 // σ·ρ·ρ̂·|M⁻¹ω|), marched with Beer–Lambert transmittance and Hillaire's energy-conserving
 // step integration, shadow rays toward the sun, and Wrenninge's multiple-scattering octaves.
-// Preceded by cloudlut_phase.glsl and particle_common.glsl (the particle records, read only; M⁻¹
-// is toParticle, toParticle[0].w = |M⁻¹ l| the extinction scale toward the sun, toParticle[1].w
-// the bounding-sphere radius). See src/render/RayMarchRenderer.h for the parameters.
+// Preceded by cloudlut_phase.glsl, particle_common.glsl (the particle records, read only; M⁻¹
+// is toParticle, toParticle[0].w = |M⁻¹ l| the extinction scale toward the sun) and
+// raymarch_cells.glsl (the particles on a ray). See src/render/RayMarchRenderer.h for the
+// parameters.
 
-uniform int uCount;
 uniform vec3 uEye;
 uniform vec3 uRay00, uRayDx, uRayDy;  // unnormalised ray = uRay00 + px·uRayDx + py·uRayDy
 uniform float uHeight;
@@ -22,16 +22,19 @@ uniform int uModel;                    // 0 homogeneous, 1 radial (1 − r²)²,
 uniform sampler3D uDensity;
 uniform float uGridRes;
 uniform float uMinTransmittance, uMinOpacityForDistance, uNoDistance;
+uniform int uProbePasses;              // 2: the loop that tells whether the GL cut this pixel's loops
 
 layout(location = 0) out vec4 outColour;    // radiance, transmittance
 layout(location = 1) out float outDistance;
 
-const int MAX_HITS = 48;
-const int MAX_SHADOW_HITS = 24;
-
-mat3 toParticle(int i) {
-  return mat3(particles[i].toParticle[0].xyz, particles[i].toParticle[1].xyz, particles[i].toParticle[2].xyz);
-}
+// Pixels whose view ray or a shadow ray crossed more particles than it keeps (the farthest left
+// out), and pixels whose loops the GL cut short (llvmpipe ends every loop of a shader invocation
+// once its loops have made 65535 passes in all; a last loop of uProbePasses passes then makes
+// only one).
+layout(std430, binding = 3) buffer RayMarchCounters {
+  uint droppedPixels;
+  uint budgetPixels;
+};
 
 float rhoHat(vec3 p) {
   float r2 = dot(p, p);
@@ -40,24 +43,6 @@ float rhoHat(vec3 p) {
   if (uModel == 1) { float a = 1.0 - r2; return a * a; }
   vec3 tc = ((p + 1.0) * 0.5 * (uGridRes - 1.0) + 0.5) / uGridRes;
   return texture(uDensity, tc).r;
-}
-
-// World interval [t0, t1] of the ray (o, d) inside particle i (false when it misses).
-bool interval(int i, vec3 o, vec3 d, out float t0, out float t1) {
-  vec3 c = particles[i].centerDensity.xyz;
-  vec3 oc = o - c;
-  float bound = particles[i].toParticle[1].w;
-  float bb = dot(oc, d);
-  if (dot(oc, oc) - bb * bb > bound * bound) { t0 = t1 = 0.0; return false; }
-  mat3 m = toParticle(i);
-  vec3 po = m * oc, pd = m * d;
-  float a = dot(pd, pd), b = dot(po, pd), cc = dot(po, po) - 1.0;
-  float disc = b * b - a * cc;
-  if (disc <= 0.0) { t0 = t1 = 0.0; return false; }
-  float s = sqrt(disc);
-  t0 = max((-b - s) / a, 0.0);
-  t1 = (-b + s) / a;
-  return t1 > t0;
 }
 
 float octavePhase(int i, float mu) {
@@ -71,26 +56,19 @@ void main() {
   float px = gl_FragCoord.x, py = uHeight - gl_FragCoord.y;
   vec3 dir = normalize(uRay00 + px * uRayDx + py * uRayDy);
 
-  // Particles on the view ray: index, interval, extinction scale |M⁻¹ dir|.
-  int hitIndex[MAX_HITS];
-  float hitT0[MAX_HITS], hitT1[MAX_HITS];
-  int hits = 0;
-  float tMin = 1e30, tMax = 0.0;
-  for (int i = 0; i < uCount && hits < MAX_HITS; ++i) {
-    float t0, t1;
-    if (!interval(i, uEye, dir, t0, t1)) continue;
-    // Keep them sorted by entry (insertion sort).
-    int k = hits++;
-    while (k > 0 && hitT0[k - 1] > t0) {
-      hitIndex[k] = hitIndex[k - 1]; hitT0[k] = hitT0[k - 1]; hitT1[k] = hitT1[k - 1]; --k;
-    }
-    hitIndex[k] = i; hitT0[k] = t0; hitT1[k] = t1;
-    tMin = min(tMin, t0);
-    tMax = max(tMax, t1);
-  }
+  // Particles on the view ray, by entry: index, interval (raymarch_cells.glsl).
+  int dropped = 0;
+  int hits = particlesOnRay(uEye, dir, MAX_HITS, dropped);
   if (hits == 0) { outColour = vec4(0.0, 0.0, 0.0, 1.0); outDistance = uNoDistance; return; }
+  int viewIndex[MAX_HITS];
+  float viewT0[MAX_HITS], viewT1[MAX_HITS];
+  float tMin = hitT0[0], tMax = 0.0;
+  for (int k = 0; k < hits; ++k) {
+    viewIndex[k] = hitIndex[k]; viewT0[k] = hitT0[k]; viewT1[k] = hitT1[k];
+    tMax = max(tMax, hitT1[k]);
+  }
   float viewScale[MAX_HITS];
-  for (int k = 0; k < hits; ++k) viewScale[k] = length(toParticle(hitIndex[k]) * dir);
+  for (int k = 0; k < hits; ++k) viewScale[k] = length(toParticle(viewIndex[k]) * dir);
 
   // Segments to march: the union of the intervals (adaptive: empty space is skipped and the
   // steps are spread over the occupied length only) or the whole extent (fixed).
@@ -98,8 +76,8 @@ void main() {
   int segments = 0;
   if (uAdaptive != 0) {
     for (int k = 0; k < hits; ++k) {
-      if (segments > 0 && hitT0[k] <= segB[segments - 1]) segB[segments - 1] = max(segB[segments - 1], hitT1[k]);
-      else { segA[segments] = hitT0[k]; segB[segments] = hitT1[k]; ++segments; }
+      if (segments > 0 && viewT0[k] <= segB[segments - 1]) segB[segments - 1] = max(segB[segments - 1], viewT1[k]);
+      else { segA[segments] = viewT0[k]; segB[segments] = viewT1[k]; ++segments; }
     }
   } else {
     segA[0] = tMin; segB[0] = tMax; segments = 1;
@@ -115,6 +93,7 @@ void main() {
   vec3 radiance = vec3(0.0);
   float T = 1.0;
   float distance = uNoDistance;
+  int first = 0;
   for (int sg = 0; sg < segments && T > uMinTransmittance; ++sg) {
    int n = max(1, int(ceil((segB[sg] - segA[sg]) / dt - 1e-3)));
    float h = (segB[sg] - segA[sg]) / float(n);
@@ -123,30 +102,27 @@ void main() {
     float tm = t + 0.5 * h;
     vec3 x = uEye + tm * dir;
     float sigma = 0.0;
-    for (int k = 0; k < hits; ++k) {
-      if (tm < hitT0[k] || tm > hitT1[k]) continue;
-      int i = hitIndex[k];
+    // The particles whose interval holds tm: entries sorted, so from the first not yet left
+    // behind (the midpoints only move on) to the first not yet entered.
+    while (first < hits && viewT1[first] < tm) ++first;
+    for (int k = first; k < hits && viewT0[k] <= tm; ++k) {
+      if (tm > viewT1[k]) continue;
+      int i = viewIndex[k];
       sigma += uSigma * particles[i].centerDensity.w * rhoHat(toParticle(i) * (x - particles[i].centerDensity.xyz)) * viewScale[k];
     }
     if (sigma > 0.0) {
       vec3 source = vec3(0.0);
       if ((uTerms & 3) != 0) {
         // Shadow ray toward the sun: optical depth over the particles it crosses.
-        int sIndex[MAX_SHADOW_HITS];
-        int sHits = 0;
+        int sHits = particlesOnRay(x, uSun, MAX_SHADOW_HITS, dropped);
         float sEnd = 0.0;
-        for (int i = 0; i < uCount && sHits < MAX_SHADOW_HITS; ++i) {
-          float s0, s1;
-          if (!interval(i, x, uSun, s0, s1)) continue;
-          sIndex[sHits++] = i;
-          sEnd = max(sEnd, s1);
-        }
+        for (int k = 0; k < sHits; ++k) sEnd = max(sEnd, hitT1[k]);
         float tau = 0.0;
         float sdt = sEnd / float(uShadowSteps);
         for (int j = 0; j < uShadowSteps && sHits > 0; ++j) {
           vec3 y = x + (float(j) + 0.5) * sdt * uSun;
           for (int k = 0; k < sHits; ++k) {
-            int i = sIndex[k];
+            int i = hitIndex[k];
             tau += uSigma * particles[i].centerDensity.w * rhoHat(toParticle(i) * (y - particles[i].centerDensity.xyz)) *
                    particles[i].toParticle[0].w * sdt;
           }
@@ -170,4 +146,8 @@ void main() {
   }
   outColour = vec4(radiance, T);
   outDistance = distance;
+  if (dropped > 0) atomicAdd(droppedPixels, 1u);
+  int passes = 0;
+  for (int k = 0; k < uProbePasses; ++k) ++passes;
+  if (passes < uProbePasses) atomicAdd(budgetPixels, 1u);
 }
