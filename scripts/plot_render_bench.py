@@ -2,7 +2,9 @@
 """Draws the ground-truth chart of `cloudlut bench --suite ground-truth`: RMSE against the
 path-traced reference versus render time, one panel per scene, one series per method (ray
 marching at its step counts, fixed and adaptive; the LUT particle renderer), the reference's
-noise floor as a dashed line. Usage: plot_render_bench.py BENCH.csv OUT.png"""
+noise floor as a dashed line. With FRAMES.png, also the steady-state frame times at 1280×720
+(bench/FrameTime.h rows): the ray marcher at 32 steps and the LUT renderer at full, 1/2 and 1/4
+particle resolution, per scene. Usage: plot_render_bench.py BENCH.csv OUT.png [FRAMES.png]"""
 import csv
 import sys
 from collections import defaultdict
@@ -22,12 +24,44 @@ def number(text: str) -> float:
         return float("nan")
 
 
+def plot_frames(rows, out):
+    """Bars of steady-state frame time per scene: ray marcher, LUT at 1/1, 1/2, 1/4 resolution."""
+    scenes = [s for s in SCENES if any(r["table"] == s for r in rows)]
+    scenes += sorted({r["table"] for r in rows} - set(scenes))
+    kinds = [("frame-raymarch", "32", "ray march, 32 steps"), ("frame-lut-volume", "1", "LUT, full resolution"),
+             ("frame-lut-volume", "2", "LUT, particles at 1/2"), ("frame-lut-volume", "4", "LUT, particles at 1/4")]
+    fig, ax = plt.subplots(figsize=(max(6.0, 1.3 * len(scenes)), 4.2))
+    width = 0.8 / len(kinds)
+    for k, (method, steps, label) in enumerate(kinds):
+        xs, ys = [], []
+        for i, scene in enumerate(scenes):
+            match = [r for r in rows if r["table"] == scene and r["method"] == method and r["steps"] == steps]
+            if match:
+                xs.append(i + (k - 1.5) * width)
+                ys.append(1e3 * number(match[0]["seconds"]))
+        ax.bar(xs, ys, width, label=label)
+    ax.set_xticks(range(len(scenes)))
+    ax.set_xticklabels(scenes, rotation=30, ha="right", fontsize=8)
+    ax.set_yscale("log")
+    ax.set_ylabel("steady-state frame, ms (llvmpipe)")
+    resolution = rows[0]["resolution"] if rows else ""
+    ax.set_title("frame time at %s: LUT renderer against the ray marcher" % resolution)
+    ax.grid(True, axis="y", which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
 def main() -> int:
-    if len(sys.argv) != 3:
-        print("usage: plot_render_bench.py BENCH.csv OUT.png", file=sys.stderr)
+    if len(sys.argv) not in (3, 4):
+        print("usage: plot_render_bench.py BENCH.csv OUT.png [FRAMES.png]", file=sys.stderr)
         return 2
     rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["suite"] == "ground-truth"]
-    measured = [r for r in rows if r["table"] and number(r["seconds"]) > 0 and number(r["error_mean"]) >= 0]
+    if len(sys.argv) == 4:
+        plot_frames([r for r in rows if r["method"].startswith("frame-")], sys.argv[3])
+    # the frame rows' error is the upscale's, against the full-resolution frame, not the reference's
+    measured = [r for r in rows if r["table"] and number(r["seconds"]) > 0 and number(r["error_mean"]) >= 0
+                and not r["method"].startswith("frame-")]
     if not measured:
         print("plot_render_bench.py: no ground-truth rows with time and error", file=sys.stderr)
         return 1

@@ -7,7 +7,8 @@
 // particle renderer from tables baked at reduced resolution, alpha or volume-aware blending,
 // with the cloud lighting model; "-seed" appended: the seed's model; "-18" appended: 18-order
 // instead of converged multiple scattering), "raymarch" and
-// "raymarch-adaptive" at several step counts. error_mean = RMSE of R, G, B over the cloud
+// "raymarch-adaptive" at several step counts; and the steady-state frame times of
+// bench/FrameTime.h ("frame-lut-volume", "frame-raymarch", at 1280×720). error_mean = RMSE of R, G, B over the cloud
 // pixels, error_p95 = 95th percentile of the per-pixel |error| (mean of the channels),
 // error_max = largest error; the note holds the relative RMSE, the relative RMSE with the
 // reference's noise removed (nc_rel_rmse), the relative bias and SSIM. Times are the
@@ -31,6 +32,7 @@
 #include "bake/OpticalDepthBaker.h"
 #include "bake/ScatteringBaker.h"
 #include "bench/BenchSuites.h"
+#include "bench/FrameTime.h"
 #include "core/Medium.h"
 #include "core/Errors.h"
 #include "io/Fnv1a.h"
@@ -348,6 +350,17 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
         const double t = best([&](render::RenderStats* s) { return marcher.render(scene.particles, rm, s); }, img);
         addRow(adaptive ? "raymarch-adaptive" : "raymarch", n, img, t, "; shadow steps 6, octaves 8, abc 0.5");
       }
+    // Issue 17's speed goal: steady-state frames at 1280×720 (bench/FrameTime.h), converged tables.
+    if (!lutRenderers.empty() && lutRenderers.front().suffix.empty()) {
+      render::RayMarchSettings rm;
+      rm.first = medium.first;
+      rm.later = medium.later;
+      rm.unitOpticalRadius = static_cast<float>(medium.unitOpticalRadius());
+      for (BenchRow& row : frameTimeRows(name, scene, view, *lutRenderers.front().renderer, marcher, rm, options.quick)) {
+        row.variant = toString(medium.model);
+        report.add(row);
+      }
+    }
     reportProgress(options.progress, "ground-truth", static_cast<double>(si + 1) / sceneCount);
   }
   if (!lutNote.empty()) {

@@ -206,6 +206,8 @@ int runRender(int argc, char** argv) {
                   file.c_str(), image.width, image.height, stats.particles, render::toString(settings.blend),
                   1e3 * stats.generateSeconds, 1e3 * stats.occlusionSeconds, 1e3 * stats.renderSeconds,
                   1e3 * setupSeconds, context->description().c_str());
+      if (settings.downscale > 1)
+        std::printf("  particles at 1/%d resolution, upscale %.1f ms\n", settings.downscale, 1e3 * stats.upscaleSeconds);
       if (settings.blend == render::BlendMode::Volume)
         std::printf("  volume blending: %zu tile(s) (%zu split for the fragment load), pool %.1f MiB, %zu fragments, "
                     "%zu overflowed (alpha-blended), %zu pixels over %d segments\n",

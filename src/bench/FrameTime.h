@@ -1,0 +1,29 @@
+#pragma once
+// Issue 17's speed goal in the ground-truth suite: the steady-state frame time of the particle
+// renderer against the ray marcher on one scene, at 1280×720 (--quick: 640×360). The LUT
+// renderer (cloud lighting, volume-aware blending) at full, ½ and ¼ particle resolution; the
+// ray marcher at 32 steps. Each is drawn once unmeasured (llvmpipe compiles a program's code at
+// its first draw, which a single `render` run pays), then timed as the best of three frames:
+// the particle upload, the light-space passes, shading and blending, the upscale; not the
+// read-back.
+//
+// Rows (suite "ground-truth", resolution the frame's): method "frame-lut-volume" with steps =
+// the downscale factor, "frame-raymarch" with steps = 32. For the reduced resolutions
+// error_mean is the relative RMSE of the frame against the full-resolution frame (RGB over the
+// pixels where either is cloud: what the upscale costs), and the note gives the speed-up over
+// the ray marcher's frame.
+#include <string>
+#include <vector>
+
+#include "bench/BenchReport.h"
+#include "render/RayMarchRenderer.h"
+#include "render/Renderer.h"
+#include "scene/Scene.h"
+
+namespace cloudlut::bench {
+
+std::vector<BenchRow> frameTimeRows(const std::string& sceneName, const scene::Scene& scene, const scene::View& view,
+                                    render::Renderer& lut, render::RayMarchRenderer& marcher,
+                                    const render::RayMarchSettings& marchBase, bool quick);
+
+}  // namespace cloudlut::bench
