@@ -130,3 +130,36 @@ TEST_CASE("volume order: a stack of 60 disjoint particles composites front to ba
   CHECK(worstAlpha < 1e-4);
   CHECK(worstColour < 1e-3);
 }
+
+TEST_CASE("volume order: a pixel beyond the GL's loop budget is reported, never silently wrong", "[render][volume]") {
+  // N identical particles on one spot against one particle N times as dense: the same optical
+  // depth, so the same opacity. A pixel with N segments makes about N²/32 loop passes in the
+  // resolve; llvmpipe stops an invocation's loops after 65535, which 1000 reach and 300 do not.
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
+  RenderSettings s = columnSettings(40.0f);
+  s.width = 16;
+  s.height = 12;
+  s.blend = BlendMode::Volume;
+  s.fragmentsPerPixel = 1024;
+  const float totalDensity = 0.12f;
+  const Image one = renderer.render({Particle{glm::vec3(0.0f), glm::vec3(1.0f), glm::quat(1, 0, 0, 0), totalDensity}}, s);
+  for (const int n : {300, 1000}) {
+    const std::vector<Particle> stack(std::size_t(n), Particle{glm::vec3(0.0f), glm::vec3(1.0f), glm::quat(1, 0, 0, 0),
+                                                               totalDensity / float(n)});
+    RenderStats stats;
+    const Image image = renderer.render(stack, s, &stats);
+    REQUIRE(stats.fragmentOverflow == 0);
+    std::size_t covered = 0, wrong = 0;
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x) {
+        covered += one.pixel(x, y)[3] > 0.01f ? 1 : 0;
+        wrong += std::abs(image.pixel(x, y)[3] - one.pixel(x, y)[3]) > 1e-3f ? 1 : 0;
+      }
+    INFO(n << " stacked: " << covered << " covered pixels, " << wrong << " off the dense particle's opacity, "
+           << stats.resolveCutPixels << " reported cut");
+    REQUIRE(covered > 10);
+    CHECK(wrong <= stats.resolveCutPixels);
+    if (n == 300) CHECK(stats.resolveCutPixels == 0);
+  }
+}

@@ -214,6 +214,12 @@ int runRender(int argc, char** argv) {
                     stats.volumeTiles, stats.volumeRedrawnTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0,
                     stats.fragments,
                     stats.fragmentOverflow, stats.truncatedPixels, render::kMaxSegmentsPerPixel);
+      if (stats.resolveCutPixels > 0)
+        std::fprintf(stderr,
+                     "cloudlut render: warning: %zu pixels hold more fragments than this GL's loop budget lets the "
+                     "volume resolve composite (llvmpipe: 65535 loop passes per shader invocation); their farther "
+                     "segments are missing\n",
+                     stats.resolveCutPixels);
       if (stats.sunFootprintOverflow > 0)
         std::printf("  sun volume: %zu particle-cascade pair(s) over the footprint limit, left to a coarser cascade\n",
                     stats.sunFootprintOverflow);

@@ -111,6 +111,7 @@ struct RenderStats {
   std::size_t fragments = 0;         // volume: fragments produced
   std::size_t fragmentOverflow = 0;  // volume: fragments alpha-blended for want of pool room
   std::size_t truncatedPixels = 0;   // volume: pixels with more than kMaxSegmentsPerPixel segments
+  std::size_t resolveCutPixels = 0;  // volume: pixels whose resolve the GL cut short (VolumeResolve.h)
   std::size_t volumeTiles = 0;       // volume: screen tiles, each drawn and resolved on its own
   std::size_t volumeRedrawnTiles = 0;  // volume: tiles over the pool's room, undone and split in two
   std::size_t volumePoolBytes = 0;   // volume: bytes of the node pool (one tile's)

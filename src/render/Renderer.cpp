@@ -168,6 +168,7 @@ struct Renderer::Impl {
         stats->fragments = c.fragments;
         stats->fragmentOverflow = c.overflow;
         stats->truncatedPixels = c.truncatedPixels;
+        stats->resolveCutPixels = c.cutPixels;
         stats->resolveSeconds = volume.resolveSeconds();
         stats->volumeTiles = c.tiles;
         stats->volumeRedrawnTiles = c.redrawnTiles;

@@ -12,7 +12,7 @@ namespace cloudlut::render {
 
 namespace {
 
-constexpr GLuint kPoolBinding = 2;
+constexpr GLuint kPoolBinding = 2, kCutBinding = 3;
 constexpr GLuint kHeadsUnit = 0, kColourUnit = 1;
 // The pool (volume_fragments.glsl, block Fragments): count, capacity, overflow, truncated pixels.
 constexpr std::size_t kCounterWords = 4;
@@ -58,7 +58,7 @@ VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long 
 }
 
 VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
-    : gl_(gl), budget_(budget), pool_(gl) {
+    : gl_(gl), budget_(budget), pool_(gl), cut_(gl) {
   program_ = linkComputeProgram(gl, {"volume_fragments.glsl", "volume_resolve.comp.glsl"},
                                 fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel) +
                                     glslDefine("GROUP_SIDE", kGroupSide));
@@ -173,11 +173,18 @@ void VolumeResolve::resolveTile(GLuint colourTexture, int x0, int y0, int x1, in
   gl_.BindImageTexture(kColourUnit, colourTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   gl_.Uniform2i(program_.uniform("uOrigin"), x0, y0);
   gl_.Uniform2i(program_.uniform("uEnd"), x1, y1);
+  gl_.Uniform1i(program_.uniform("uProbePasses"), 2);
+  const GLuint zero = 0;
+  cut_.assign(&zero, sizeof zero);
+  cut_.bind(kCutBinding);
   gl_.DispatchCompute(groupsFor(static_cast<std::size_t>(x1 - x0), kGroupSide),
                       groupsFor(static_cast<std::size_t>(y1 - y0), kGroupSide), 1);
   fullBarrier(gl_);
   gl_.Finish();
   checkGlError(gl_, "resolving the volume fragment lists");
+  GLuint cut = 0;
+  cut_.read(0, sizeof cut, &cut);
+  counts_.cutPixels += cut;
 }
 
 }  // namespace cloudlut::render

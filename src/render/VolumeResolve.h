@@ -18,6 +18,14 @@
 // node; the particles are drawn once per tile, scissored to it, and the tile is resolved before
 // the pool is emptied for the next. Every pixel sees its whole list, so the tiled image is the
 // untiled one.
+//
+// A pixel with L segments makes about L²/kMaxSegmentsPerPixel loop passes in the resolve. llvmpipe
+// ends every loop of a shader invocation once its loops have made 65535 passes in all, which
+// hundreds of segments on one pixel reach (600 stacked particles do not, 1000 do): such a pixel
+// loses its farther segments. The resolve tells these pixels (a last loop of two passes makes
+// only one) and counts them apart (Counts::cutPixels, RenderStats::resolveCutPixels; the count
+// takes in every pixel of an invocation that ran out, so it may exceed the pixels harmed);
+// `render` warns. A GL without the limit never cuts.
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -81,6 +89,7 @@ class VolumeResolve {
     std::size_t fragments = 0;        // produced
     std::size_t overflow = 0;         // alpha-blended for want of pool room
     std::size_t truncatedPixels = 0;  // pixels with more than kMaxSegmentsPerPixel segments
+    std::size_t cutPixels = 0;        // pixels whose resolve the GL cut short (loop budget; header)
     std::size_t tiles = 0;            // tiles resolved (the plan's, and the parts of split ones)
     std::size_t redrawnTiles = 0;     // tiles drawn, found over the pool's room and split in two
   };
@@ -96,6 +105,7 @@ class VolumeResolve {
   const StorageBudget& budget_;
   GlProgram program_;
   StorageBuffer pool_;
+  StorageBuffer cut_;  // the resolve's count of pixels the GL cut short (binding 3)
   GLuint heads_ = 0, unusedHeads_ = 0;
   int width_ = 0, height_ = 0;
   VolumeTiling tiling_;

@@ -26,6 +26,13 @@ layout(r32ui, binding = 0) uniform readonly uimage2D uHeads;
 layout(rgba32f, binding = 1) uniform image2D uColor;  // in: overflow (rgb, T); out: the result
 uniform ivec2 uOrigin;  // the tile's first pixel (render/VolumeResolve.h: tiles)
 uniform ivec2 uEnd;     // one past its last pixel
+// Pixels whose loops the GL cut short: llvmpipe ends every loop of an invocation once its loops
+// have made 65535 passes in all (a pixel with L segments makes about L²/MAX_SEGMENTS), and a
+// last loop of uProbePasses (2) passes then makes only one.
+uniform int uProbePasses;
+layout(std430, binding = 3) buffer ResolveCut {
+  uint cutPixels;
+};
 
 float seg_a[MAX_SEGMENTS];
 uint seg_node[MAX_SEGMENTS];
@@ -196,7 +203,10 @@ void main() {
     boundNode = seg_node[n - 1];
     boundTaken = ties;
   }
-  if (chunks > 1) atomicAdd(truncatedPixels, 1u);
+  int probe = 0;
+  for (int k = 0; k < uProbePasses; ++k) ++probe;
+  if (probe < uProbePasses) atomicAdd(cutPixels, 1u);
+  else if (chunks > 1) atomicAdd(truncatedPixels, 1u);
   color += transmittance * overflow.rgb;
   transmittance *= overflow.a;
   imageStore(uColor, px, vec4(color, transmittance));
