@@ -1,6 +1,9 @@
 // cloudlut_atmosphere_nodes.glsl — what one node of the multiple-scattering and sky-irradiance
 // tables holds, as the integrals the baker evaluates (src/bake/AtmosphereBaker.h; an engine may
 // bake them on the GPU with the same code). Needs cloudlut_atmosphere_sky.glsl and what it needs.
+// On the GPU a node costs dirs² · steps loop passes in one invocation: the baker's 8² · 16 = 1024
+// is safe, but Mesa's llvmpipe ends an invocation's loops after 65 535 passes in all, silently,
+// so 64² directions (Hillaire's) with 16 steps would come out short there.
 
 #ifndef CLOUDLUT_FN
 #define CLOUDLUT_FN
