@@ -12,6 +12,7 @@
 #include "render/GpuParticleRecord.h"
 #include "render/GpuStorage.h"
 #include "render/ParticleCellGrid.h"
+#include "render/ShaderSources.h"
 #include "render/Stopwatch.h"
 
 namespace cloudlut::render {
@@ -34,11 +35,10 @@ struct RayMarchRenderer::Impl {
         gl(makeCurrentAndLoadGlFunctions(c)),
         budget(gl, c),
         program(linkDrawProgram(gl, {"raymarch.vert.glsl"},
-                                {"cloudlut_phase.glsl", "particle_common.glsl", "raymarch_cells.glsl", "raymarch.frag.glsl"},
-                                "#define PARTICLES_ACCESS readonly\n#define MAX_CELLS_PER_AXIS " +
-                                    std::to_string(kMaxCellsPerAxis) + "\n#define MAX_HITS " +
-                                    std::to_string(kMaxViewHits) + "\n#define MAX_SHADOW_HITS " +
-                                    std::to_string(kMaxShadowHits) + "\n",
+                                {"cloudlut_phase.glsl", "particle_common.glsl", "raymarch_cells.glsl", "loop_budget.glsl",
+                                 "raymarch.frag.glsl"},
+                                "#define PARTICLES_ACCESS readonly\n" + glslDefine("MAX_CELLS_PER_AXIS", kMaxCellsPerAxis) +
+                                    glslDefine("MAX_HITS", kMaxViewHits) + glslDefine("MAX_SHADOW_HITS", kMaxShadowHits),
                                 "ray-march")),
         particles(gl),
         cellStarts(gl),
@@ -127,7 +127,7 @@ struct RayMarchRenderer::Impl {
     uniforms.set("uGridOrigin", grid.origin);
     uniforms.set("uGridCell", grid.cellSize);
     uniforms.set("uGridDims", grid.dims);
-    uniforms.set("uProbePasses", 2);
+    uniforms.set("uProbePasses", kLoopProbePasses);
     uniforms.set("uEye", eye);
     uniforms.set("uRay00", r00);
     uniforms.set("uRayDx", rdx);

@@ -19,6 +19,10 @@ std::string glslDefine(const std::string& name, long long value);
 // A complete program source from embedded files, after `defines` (e.g. glslDefine("STAGE", 1)).
 std::string assembleShader(const std::vector<std::string>& files, const std::string& defines = "");
 
+// The value of uProbePasses for programs that include shaders/loop_budget.glsl (whether the GL
+// cut an invocation's loops short: a loop of this many passes then makes fewer).
+inline constexpr int kLoopProbePasses = 2;
+
 // "source string 0 is the preamble, 1 is FILE, ..." for a program's sources, for error messages.
 std::string shaderFileLegend(const std::vector<std::string>& files);
 

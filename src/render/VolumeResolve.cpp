@@ -59,7 +59,7 @@ VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long 
 
 VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
     : gl_(gl), budget_(budget), pool_(gl), cut_(gl) {
-  program_ = linkComputeProgram(gl, {"volume_fragments.glsl", "volume_resolve.comp.glsl"},
+  program_ = linkComputeProgram(gl, {"volume_fragments.glsl", "loop_budget.glsl", "volume_resolve.comp.glsl"},
                                 fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel) +
                                     glslDefine("GROUP_SIDE", kGroupSide));
 }
@@ -173,7 +173,7 @@ void VolumeResolve::resolveTile(GLuint colourTexture, int x0, int y0, int x1, in
   gl_.BindImageTexture(kColourUnit, colourTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   gl_.Uniform2i(program_.uniform("uOrigin"), x0, y0);
   gl_.Uniform2i(program_.uniform("uEnd"), x1, y1);
-  gl_.Uniform1i(program_.uniform("uProbePasses"), 2);
+  gl_.Uniform1i(program_.uniform("uProbePasses"), kLoopProbePasses);
   const GLuint zero = 0;
   cut_.assign(&zero, sizeof zero);
   cut_.bind(kCutBinding);

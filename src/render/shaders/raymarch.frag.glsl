@@ -5,7 +5,7 @@
 // step integration, shadow rays toward the sun, and Wrenninge's multiple-scattering octaves.
 // Preceded by cloudlut_phase.glsl, particle_common.glsl (the particle records, read only; M⁻¹
 // is toParticle, toParticle[0].w = |M⁻¹ l| the extinction scale toward the sun) and
-// raymarch_cells.glsl (the particles on a ray). See src/render/RayMarchRenderer.h for the
+// raymarch_cells.glsl (the particles on a ray) and loop_budget.glsl. See src/render/RayMarchRenderer.h for the
 // parameters.
 
 uniform vec3 uEye;
@@ -22,15 +22,12 @@ uniform int uModel;                    // 0 homogeneous, 1 radial (1 − r²)²,
 uniform sampler3D uDensity;
 uniform float uGridRes;
 uniform float uMinTransmittance, uMinOpacityForDistance, uNoDistance;
-uniform int uProbePasses;              // 2: the loop that tells whether the GL cut this pixel's loops
 
 layout(location = 0) out vec4 outColour;    // radiance, transmittance
 layout(location = 1) out float outDistance;
 
 // Pixels whose view ray or a shadow ray crossed more particles than it keeps (the farthest left
-// out), and pixels whose loops the GL cut short (llvmpipe ends every loop of a shader invocation
-// once its loops have made 65535 passes in all; a last loop of uProbePasses passes then makes
-// only one).
+// out), and pixels whose loops the GL cut short (loop_budget.glsl).
 layout(std430, binding = 3) buffer RayMarchCounters {
   uint droppedPixels;
   uint budgetPixels;
@@ -62,13 +59,13 @@ void main() {
   if (hits == 0) { outColour = vec4(0.0, 0.0, 0.0, 1.0); outDistance = uNoDistance; return; }
   int viewIndex[MAX_HITS];
   float viewT0[MAX_HITS], viewT1[MAX_HITS];
+  float viewScale[MAX_HITS];  // extinction scale |M⁻¹ dir|
   float tMin = hitT0[0], tMax = 0.0;
   for (int k = 0; k < hits; ++k) {
     viewIndex[k] = hitIndex[k]; viewT0[k] = hitT0[k]; viewT1[k] = hitT1[k];
+    viewScale[k] = length(toParticle(hitIndex[k]) * dir);
     tMax = max(tMax, hitT1[k]);
   }
-  float viewScale[MAX_HITS];
-  for (int k = 0; k < hits; ++k) viewScale[k] = length(toParticle(viewIndex[k]) * dir);
 
   // Segments to march: the union of the intervals (adaptive: empty space is skipped and the
   // steps are spread over the occupied length only) or the whole extent (fixed).
@@ -147,7 +144,5 @@ void main() {
   outColour = vec4(radiance, T);
   outDistance = distance;
   if (dropped > 0) atomicAdd(droppedPixels, 1u);
-  int passes = 0;
-  for (int k = 0; k < uProbePasses; ++k) ++passes;
-  if (passes < uProbePasses) atomicAdd(budgetPixels, 1u);
+  if (loopsWereCut()) atomicAdd(budgetPixels, 1u);
 }

@@ -8,7 +8,7 @@
 // and the pieces are composited front to back (eqs. 16–17). Non-overlapping segments reduce to
 // alpha blending; the transmittance is exactly e^{−Σ τ_i} in any case.
 //
-// Preceded by volume_fragments.glsl and the defines of render/VolumeResolve.cpp: MAX_SEGMENTS
+// Preceded by volume_fragments.glsl, loop_budget.glsl and the defines of render/VolumeResolve.cpp: MAX_SEGMENTS
 // (kMaxSegmentsPerPixel) and GROUP_SIDE (work groups of GROUP_SIDE² pixels).
 //
 // Order: the segments are taken in chunks of at most MAX_SEGMENTS, nearest first, in the total
@@ -26,10 +26,8 @@ layout(r32ui, binding = 0) uniform readonly uimage2D uHeads;
 layout(rgba32f, binding = 1) uniform image2D uColor;  // in: overflow (rgb, T); out: the result
 uniform ivec2 uOrigin;  // the tile's first pixel (render/VolumeResolve.h: tiles)
 uniform ivec2 uEnd;     // one past its last pixel
-// Pixels whose loops the GL cut short: llvmpipe ends every loop of an invocation once its loops
-// have made 65535 passes in all (a pixel with L segments makes about L²/MAX_SEGMENTS), and a
-// last loop of uProbePasses (2) passes then makes only one.
-uniform int uProbePasses;
+// Pixels whose loops the GL cut short (loop_budget.glsl; a pixel with L segments makes about
+// L²/MAX_SEGMENTS passes).
 layout(std430, binding = 3) buffer ResolveCut {
   uint cutPixels;
 };
@@ -203,9 +201,7 @@ void main() {
     boundNode = seg_node[n - 1];
     boundTaken = ties;
   }
-  int probe = 0;
-  for (int k = 0; k < uProbePasses; ++k) ++probe;
-  if (probe < uProbePasses) atomicAdd(cutPixels, 1u);
+  if (loopsWereCut()) atomicAdd(cutPixels, 1u);
   else if (chunks > 1) atomicAdd(truncatedPixels, 1u);
   color += transmittance * overflow.rgb;
   transmittance *= overflow.a;
