@@ -172,7 +172,12 @@ TEST_CASE("faults 8, 9: a table's physics obey the rules, and wrong types name t
                       {"radius_m", 1e308},         {"radius_m", 0.0},           {"first_phase", "cs"},
                       {"first_phase", {{"kind", 99}, {"param", 0.9}}},          {"first_phase", {{"kind", 2}, {"param", 5}}},
                       {"later_phase", {{"kind", 1}, {"param", -1.0}}},          {"seed", -1},
-                      {"seed", 1.5},               {"density_model", 7}};
+                      {"seed", 1.5},               {"density_model", 7},
+                      {"angular_closure", "x"},
+                      {"angular_closure", {{"log2_rho_first", 0}, {"log2_rho_step", 1}, {"density_nodes", 1},
+                                           {"mu_bins", 2}, {"values", {1.0, 1e30}}}},
+                      {"angular_closure", {{"log2_rho_first", 0}, {"log2_rho_step", 1}, {"density_nodes", 1e12},
+                                           {"mu_bins", 2}, {"values", {1.0, 1.0}}}}};
   for (const Case& c : bad)
     for (const char* ext : {".bin", ".exr"}) {
       INFO(c.field << " = " << c.value.dump() << " in " << ext);

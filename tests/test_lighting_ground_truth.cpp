@@ -106,6 +106,29 @@ TEST_CASE("lighting: the cloud model meets the path tracer where the seed's mode
   }
 }
 
+// The particle's own multiple-scattering term closed per exit direction (core/AngularClosure.h):
+// a dense noise particle seen from its sunlit side. The homogeneous sphere at the chords' mean
+// density reflects too much of the light back toward the sun: at 96×64 the cloud model measured
+// nc_rel_rmse 11.6%, bias +7.9% without the closure and 8.3%, +1.5% with it (docs/LIGHTING.md).
+// Issue 17's bound (10%, |bias| 3%) must hold with the closure and the bias bound fail without it.
+TEST_CASE("lighting: the angular closure brings a dense particle within the issue's bounds", "[render][lighting]") {
+  const Medium medium;
+  const scene::Scene s = benchScene("one-rho4");
+  const scene::View view = scene::resolveView(s, {});
+  const io::ExrImage ref = pathTraced(s, view, medium, 256, kWidth, kHeight);
+  Judged j[2];
+  for (const bool closure : {false, true}) {
+    RenderFixture rig = RenderFixture::defaultMedium(0, closure);
+    j[closure] = judge(rig.renderer.render(s.particles, settingsFor(view, kWidth, kHeight, render::LightingModel::Cloud)), ref);
+  }
+  std::printf("one-rho4: ref noise %.3f  without the closure nc_rel_rmse %.3f bias %+.3f  with it %.3f bias %+.3f\n",
+              j[0].refNoise, j[0].ncRelRmse, j[0].relBias, j[1].ncRelRmse, j[1].relBias);
+  CHECK(j[1].refNoise < 0.25);  // its variance is removed per pixel (the first test case)
+  CHECK(j[1].ncRelRmse <= 0.10);
+  CHECK(std::abs(j[1].relBias) <= 0.03);
+  CHECK(j[0].relBias > 0.05);
+}
+
 // Looking toward the sun, the thin rim of a noise particle glows (silver lining): its single
 // scattering against the path tracer's `single` channel (next-event estimation only, so far less
 // noisy than the total). The homogeneous sphere at the chord's mean density (the table alone,

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "bake/AngularClosureBaker.h"
 #include "core/Defaults.h"
 #include "core/ReferenceParticle.h"
 #include "io/BackgroundTableWrites.h"
@@ -47,6 +48,8 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
   io::BackgroundTableWrites writes;
   nlohmann::json timings = nlohmann::json::object();
   nlohmann::json forScene = nlohmann::json::object();
+  // the optical-depth table the multiple table's angular closure is computed against
+  std::optional<Table4D> closureDepth;
   if (plan.opticalDepth) {
     const auto t0 = std::chrono::steady_clock::now();
     const ReferenceParticle particle(plan.model, plan.seed);
@@ -64,6 +67,7 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
     forScene["optical_depth_bake_s"] = secondsSince(tBake);
     timings["optical_depth_s"] = secondsSince(t0);
     done(stageDone);
+    if (plan.sc.multiple && plan.angularClosure) closureDepth = table;
     writes.write(std::move(table), plan.precision, dir, plan.formats);
   }
   nlohmann::json scatteringReport;
@@ -81,6 +85,15 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
     ScatteringResult result = bakeScattering(plan.sc, progress);
     timings["scattering_s"] = secondsSince(t0);
     done(stageDone);
+    if (result.multiple && closureDepth) {
+      const auto tClosure = std::chrono::steady_clock::now();
+      const AngularClosure closure =
+          computeAngularClosure(*closureDepth, *result.multiple, ReferenceParticle(plan.model, plan.seed),
+                                plan.sc.firstPhase, plan.sc.laterPhase, plan.closure, progress);
+      result.multiple->parameters()["angular_closure"] = angularClosureToJson(closure);
+      timings["angular_closure_s"] = secondsSince(tClosure);
+      done(stageDone);
+    }
     // Radiance is not confined to [0, 1]: 8-bit storage is for the optical-depth table only.
     const io::SampleType type = plan.precision == io::SampleType::U8 ? io::SampleType::Half : plan.precision;
     for (std::optional<Table4D>* t : {&result.single, &result.multiple})

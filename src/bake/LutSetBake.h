@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bake/AngularClosureBaker.h"
 #include "bake/AtmosphereBaker.h"
 #include "bake/OpticalDepthBaker.h"
 #include "bake/ResolutionChoice.h"
@@ -26,6 +27,10 @@ struct LutSetPlan {
   bool opticalDepth = true;   // bake the optical-depth table
   OpticalDepthSettings od;
   ScatteringSettings sc;      // sc.single / sc.multiple: which scattering tables to bake
+  // With the optical-depth and multiple tables baked together, the multiple table carries the
+  // angular closure of the particle's own term (bake/AngularClosure.h) in its parameters.
+  bool angularClosure = true;
+  AngularClosureSettings closure;
   DensityModel model = DensityModel::Noise;
   std::uint64_t seed = 1;
   io::TableFormats formats;

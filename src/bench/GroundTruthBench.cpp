@@ -29,6 +29,7 @@
 
 #include <tbb/global_control.h>
 
+#include "bake/AngularClosureBaker.h"
 #include "bake/OpticalDepthBaker.h"
 #include "bake/ScatteringBaker.h"
 #include "bench/BenchSuites.h"
@@ -105,10 +106,15 @@ bool ensureLutSet(const fs::path& dir, const Medium& medium, bool quick, int ord
     bake::ScatteringSettings sc;
     if (quick) sc.dims = {16, 32, 8, 8};
     sc.orders = orders;  // 0: converged
-    const bake::ScatteringResult r = bake::bakeScattering(sc);
+    bake::ScatteringResult r = bake::bakeScattering(sc);
     if (!r.single || !r.multiple) throw std::runtime_error("the scattering baker returned no tables");
+    // the multiple table's angular closure, as `cloudlut bake` attaches it (bake/AngularClosure.h)
+    bake::AngularClosureSettings closure;
+    if (quick) closure.photonsPerDirection = 2000;
+    r.multiple->parameters()["angular_closure"] = angularClosureToJson(bake::computeAngularClosure(
+        depth, *r.multiple, ReferenceParticle(medium.model, medium.seed), sc.firstPhase, sc.laterPhase, closure));
     nlohmann::json entries = nlohmann::json::object();
-    for (const Table4D* t : {&depth, &*r.single, &*r.multiple})
+    for (const Table4D* t : {&depth, static_cast<const Table4D*>(&*r.single), static_cast<const Table4D*>(&*r.multiple)})
       entries[t->name()] = io::writeTableFiles(*t, io::SampleType::Float, dir, {.bin = true, .exr = false});
     io::writeManifest(dir, io::makeManifest("cloudlut bench ground-truth", entries));
     return true;
@@ -224,7 +230,7 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
   std::vector<LutRenderer> lutRenderers;
   for (const int orders : {0, 18}) {
     const std::string tag = orders == 0 ? "" : "-" + std::to_string(orders);
-    const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + tag + (options.quick ? "-quick" : "-default"));
+    const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + tag + (options.quick ? "-quick" : "-default") + "-closure");
     reportProgress(options.progress, "ground-truth: LUT set" + tag, 0.0);
     if (!ensureLutSet(lutDir, medium, options.quick, orders, lutNote)) continue;
     try {

@@ -1,4 +1,5 @@
 // `cloudlut info PATH`: what a LUT file or a LUT directory holds.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include "bake/EnergyBalance.h"
 #include "cli/Command.h"
 #include "cli/Options.h"
+#include "core/AngularClosure.h"
 #include "core/Errors.h"
 #include "io/LutIo.h"
 
@@ -77,7 +79,19 @@ void printTable(const nlohmann::json& d) {
                 s["non_finite"].get<std::size_t>() ? ("  NON-FINITE " + std::to_string(s["non_finite"].get<std::size_t>())).c_str() : "",
                 s["meaning"].get<std::string>().c_str());
   }
-  if (d.contains("parameters")) std::printf("  params    %s\n", d["parameters"].dump().c_str());
+  if (!d.contains("parameters")) return;
+  nlohmann::json params = d["parameters"];
+  // the angular closure's values in one line of their range (the record itself: info --json)
+  if (params.is_object() && params.contains("angular_closure")) {
+    std::string problem;
+    if (const auto closure = angularClosureFromJson(params["angular_closure"], problem)) {
+      const auto [lo, hi] = std::minmax_element(closure->values.begin(), closure->values.end());
+      std::printf("  closure   angular closure of the own term: %d density nodes from log2 rho %g by %g, %d exit-direction bins, K %.3f to %.3f\n",
+                  closure->densityNodes, closure->log2RhoFirst, closure->log2RhoStep, closure->muBins, *lo, *hi);
+    }
+    params.erase("angular_closure");
+  }
+  std::printf("  params    %s\n", params.dump().c_str());
 }
 
 // `info DIR --energy`: the energy balance of the scattering tables (bake/EnergyBalance.h).

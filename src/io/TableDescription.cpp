@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/AngularClosure.h"
 #include "core/Errors.h"
 #include "core/ParameterRules.h"
 #include "core/ReferenceParticle.h"
@@ -106,6 +107,8 @@ void checkTableParameters(const nlohmann::json& p, const std::filesystem::path& 
   for (const char* key : {"first_phase", "later_phase"})
     if (p.contains(key) && !rules::phaseFromJsonChecked(p[key], problem)) fail(key, problem);
   if (p.contains("seed") && !rules::seedFromJson(p["seed"], problem)) fail("seed", problem);
+  if (p.contains("angular_closure") && !angularClosureFromJson(p["angular_closure"], problem))
+    fail("angular_closure", problem);
   if (p.contains("density_model")) {
     const nlohmann::json& m = p["density_model"];
     if (!m.is_string() || !parseDensityModel(m.get<std::string>()))

@@ -29,6 +29,7 @@
 
 #include "core/Defaults.h"
 #include "core/Phase.h"
+#include "core/PhaseSampling.h"
 #include "core/Progress.h"
 
 namespace cloudlut::reference {
@@ -65,20 +66,9 @@ std::vector<SphereMcEstimate> estimateSphereRadiance(const std::vector<SphereMcQ
                                                      const SphereMcSettings& settings,
                                                      const ProgressFn& progress = {});
 
-// Counter-seeded 64-bit generator (SplitMix64 steps): one independent stream per (a, b, c).
-class McRng {
- public:
-  McRng(std::uint64_t a, std::uint64_t b, std::uint64_t c);
-  std::uint64_t nextBits();
-  double next() { return static_cast<double>(nextBits() >> 11) * 0x1.0p-53; }  // [0, 1)
-
- private:
-  std::uint64_t state_;
-};
-
-// Exact sample of the cosine of the scattering angle for a phase function (rejection sampling
-// from Henyey–Greenstein lobes); exposed for tests.
-double samplePhaseCosine(const Phase& phase, McRng& rng);
+// The generator and the phase sampling are core/PhaseSampling.h's.
+using cloudlut::McRng;
+using cloudlut::samplePhaseCosine;
 
 // One forward (analog) photon: it enters uniformly over the sun-facing disk along −l, its
 // first collision is forced (weight = 1 − e^{−σ·chord}, the rest crosses unscattered), and it

@@ -75,6 +75,9 @@ class ProgramUniforms {
   GLint location(const char* name) const { return gl_.GetUniformLocation(program_, name); }
   void set(const char* name, GLint value) const { gl_.Uniform1i(location(name), value); }
   void set(const char* name, GLfloat value) const { gl_.Uniform1f(location(name), value); }
+  void set(const char* name, const std::vector<float>& values) const {
+    gl_.Uniform1fv(location(name), static_cast<GLsizei>(values.size()), values.data());
+  }
   void set(const char* name, const glm::vec3& v) const { gl_.Uniform3f(location(name), v.x, v.y, v.z); }
   void set(const char* name, const glm::ivec3& v) const { gl_.Uniform3i(location(name), v.x, v.y, v.z); }
   void set(const char* name, const glm::vec4& v) const { gl_.Uniform4f(location(name), v.x, v.y, v.z, v.w); }

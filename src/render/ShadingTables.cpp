@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/AngularClosure.h"
 #include "core/Errors.h"
 #include "core/Defaults.h"
 #include "core/Phase.h"
@@ -10,6 +11,9 @@
 #include "render/LastMatterTexture.h"
 
 namespace cloudlut::render {
+
+static_assert(kMaxAngularClosureAxis * kMaxAngularClosureAxis == 256,
+              "particle.frag.glsl declares uAngularClosure[256]");
 
 namespace {
 
@@ -69,6 +73,7 @@ ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, co
   firstPhaseKind_ = glslKind(first.kind);
   firstPhaseParam_ = first.param;
   laterAsymmetry_ = std::clamp(meanCosine(later), 0.0f, 0.99f);
+  if (lm.parameters().contains("angular_closure")) readAngularClosure(lm.parameters()["angular_closure"]);
 
   try {
     opticalDepth_ = upload(context, od, TableKind::OpticalDepth);
@@ -131,6 +136,18 @@ void ShadingTables::bind(const ProgramUniforms& uniforms) const {
   uniforms.set("uFirstPhaseKind", firstPhaseKind_);
   uniforms.set("uFirstPhaseParam", firstPhaseParam_);
   uniforms.set("uLaterAsymmetry", laterAsymmetry_);
+  uniforms.set("uAngularClosureRho", glm::vec4(closureRho_, 0.0f, 0.0f));
+  uniforms.set("uAngularClosureDims", glm::ivec3(closureDims_, 0));
+  uniforms.set("uAngularClosure", closure_);
+}
+
+void ShadingTables::readAngularClosure(const nlohmann::json& record) {
+  std::string problem;
+  const std::optional<AngularClosure> closure = angularClosureFromJson(record, problem);
+  if (!closure) throw FileError(luts_, "multiple_scattering: parameters.angular_closure: " + problem);
+  closureRho_ = glm::vec2(closure->log2RhoFirst, closure->log2RhoStep);
+  closureDims_ = glm::ivec2(closure->densityNodes, closure->muBins);
+  closure_ = closure->values;
 }
 
 }  // namespace cloudlut::render

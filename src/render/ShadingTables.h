@@ -7,7 +7,9 @@
 // σ = extinction_per_m · radius_m, the scattering tables' density axis (log2 ρ at its ends) and θS
 // warp, and the single table's first phase function.
 #include <string>
+#include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -18,11 +20,13 @@
 
 namespace cloudlut::render {
 
+
 class ShadingTables {
  public:
   // Uses the set's "optical_depth", "single_scattering" (log2 mean source) and
-  // "multiple_scattering" (mean source) tables; FileError naming the directory when one is missing
-  // or unusable (storage, channels, payload size, non-finite values, first_phase).
+  // "multiple_scattering" (mean source) tables, and the multiple table's "angular_closure" when it
+  // has one; FileError naming the directory when one is missing or unusable (storage, channels,
+  // payload size, non-finite values, first_phase, angular_closure).
   ShadingTables(const GlFunctions& gl, const GlContext& context, const io::LutSet& luts);
   ~ShadingTables();
   ShadingTables(const ShadingTables&) = delete;
@@ -39,7 +43,7 @@ class ShadingTables {
 
   // Binds the tables to texture units 0 to 2 and sets the particle program's uniforms that
   // describe them (uOpticalDepth*, uSingle*, uMultiple*, uUnitOpticalRadius, uFirstPhase*,
-  // uLaterAsymmetry).
+  // uLaterAsymmetry, uAngularClosure*).
   void bind(const ProgramUniforms& uniforms) const;
 
  private:
@@ -52,6 +56,8 @@ class ShadingTables {
   // table its density axis record
   enum class TableKind { OpticalDepth, Scattering };
   Texture upload(const GlContext& context, const Table4D& table, TableKind kind);
+  // Validates and keeps the multiple table's "angular_closure" record (FileError naming the field).
+  void readAngularClosure(const nlohmann::json& record);
   void bindTable(const ProgramUniforms& uniforms, int unit, const char* sampler, const char* dimsName,
                  const Texture& t) const;
 
@@ -63,6 +69,11 @@ class ShadingTables {
   int firstPhaseKind_ = 2;
   float firstPhaseParam_ = 0.9f;
   float laterAsymmetry_ = 0.0f;
+  // the multiple table's angular closure K(ρ, μ) (core/AngularClosure.h): (log2 ρ of the first
+  // node, node spacing), (nodes, μ bins), values; one node and bin of 1 when the table has none
+  glm::vec2 closureRho_{0.0f, 1.0f};
+  glm::ivec2 closureDims_{1, 1};
+  std::vector<float> closure_{1.0f};
 };
 
 }  // namespace cloudlut::render

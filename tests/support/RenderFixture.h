@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bake/AngularClosureBaker.h"
 #include "bake/OpticalDepthBaker.h"
 #include "core/Medium.h"
 #include "core/ReferenceParticle.h"
@@ -28,16 +29,26 @@ struct RenderFixture {
 
   // The default medium's own tables, for comparisons with the path tracer: the optical depth of
   // the default noise particle at 32×16×32×16 and the default-resolution scattering tables of
-  // `orders` (0 = converged; BakedFixtures caches the bake across tests).
-  static RenderFixture defaultMedium(int orders = 0) {
-    return RenderFixture([orders](const std::filesystem::path& dir) {
+  // `orders` (0 = converged; BakedFixtures caches the bake across tests). With `closure`, the
+  // multiple table carries its angular closure (bake/AngularClosureBaker.h) as `cloudlut bake`
+  // attaches it, at `closurePhotons` photons per sun direction.
+  static RenderFixture defaultMedium(int orders = 0, bool closure = false, long long closurePhotons = 8000) {
+    return RenderFixture([=](const std::filesystem::path& dir) {
       const Medium medium;
       bake::OpticalDepthSettings ods;
       ods.dims = {32, 16, 32, 16};
-      const Table4D od = bake::bakeOpticalDepth(ReferenceParticle(medium.model, medium.seed), ods);
+      const ReferenceParticle particle(medium.model, medium.seed);
+      const Table4D od = bake::bakeOpticalDepth(particle, ods);
       const bake::ScatteringResult& sc = defaultScattering(orders);
       if (!sc.single || !sc.multiple) throw std::runtime_error("the default scattering bake returned no table");
-      writeLutSet(dir, {&od, &*sc.single, &*sc.multiple});
+      Table4D multiple = *sc.multiple;
+      if (closure) {
+        bake::AngularClosureSettings s;
+        s.photonsPerDirection = closurePhotons;
+        multiple.parameters()["angular_closure"] = angularClosureToJson(
+            bake::computeAngularClosure(od, multiple, particle, medium.first, medium.later, s));
+      }
+      writeLutSet(dir, {&od, &*sc.single, &multiple});
     });
   }
 

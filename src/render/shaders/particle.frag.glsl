@@ -44,6 +44,29 @@ float multipleSourceAt(vec3 S, vec3 v, vec3 l, float rho) {
   return cloudlutSample4D(uMultiple, x, uMultipleDims).x * min(rho / rhoMin, 1.0);
 }
 
+// The multiple table's angular closure K(ρ, μ) (bake/AngularClosure.h, docs/LIGHTING.md): the
+// Monte Carlo power of orders 2 … N leaving the reference particle toward exit directions μ =
+// ω_out · l over the power the own-term model sends there. Nodes uAngularClosureRho.x +
+// i·uAngularClosureRho.y in log2 ρ (i < uAngularClosureDims.x), uniform bins of μ over [−1, 1]
+// (uAngularClosureDims.y); kMaxAngularClosureAxis² values (render/ShadingTables.h).
+uniform vec4 uAngularClosureRho;
+uniform ivec3 uAngularClosureDims;
+uniform float uAngularClosure[256];
+
+// K at the particle's density scale ρ and exit direction μ (dimensionless): linear in log2 ρ
+// between the nodes and in μ between the bins' centres, held at the ends.
+float angularClosure(float rho, float mu) {
+  int nodes = uAngularClosureDims.x, bins = uAngularClosureDims.y;
+  float s = clamp((log2(max(rho, 1e-30)) - uAngularClosureRho.x) / uAngularClosureRho.y, 0.0, float(nodes - 1));
+  float m = clamp((mu + 1.0) * 0.5 * float(bins) - 0.5, 0.0, float(bins - 1));
+  int s0 = min(int(s), max(nodes - 2, 0)), m0 = min(int(m), max(bins - 2, 0));
+  int s1 = min(s0 + 1, nodes - 1), m1 = min(m0 + 1, bins - 1);
+  float fs = s - float(s0), fm = m - float(m0);
+  float a = mix(uAngularClosure[s0 * bins + m0], uAngularClosure[s0 * bins + m1], fm);
+  float b = mix(uAngularClosure[s1 * bins + m0], uAngularClosure[s1 * bins + m1], fm);
+  return mix(a, b, fs);
+}
+
 layout(r32ui, binding = 0) uniform coherent uimage2D uHeads;  // volume_fragments.glsl lists
 
 in vec3 vWorld;
@@ -125,7 +148,7 @@ void main() {
   }
   // Multiple scattering, per unit sun irradiance, already lit (the sunlight factor included).
   //   seed:  the mean source of the particle's sphere at ρ, times the sunlight;
-  //   cloud: the particle's sphere at the ray's density ρ·T̄, lit by the larger of the direct and
+  //   cloud: the particle's sphere at the ray's density ρ·T̄, closed per exit direction, lit by the larger of the direct and
   //          the diffuse transmittance through the cloud toward the sun, blended with the cloud
   //          sphere of the local cloud around the mean scattering point (localCloudAlongSun,
   //          cloudSphereEntry, cloudSphereDensity), lit the same way through the cloud beyond it,
@@ -137,7 +160,10 @@ void main() {
       multiple = sunlight * multipleScatteringFromTable(cloudlutSample4D(uMultiple, x, uMultipleDims).x, tau);
     } else {
       float lit = max(sunlight, diffuseTransmittance(tauOutside, uLaterAsymmetry));
-      float own = lit * multipleScatteringFromTable(multipleSourceAt(S, v, l, rho * od.x), tau);
+      // the particle's own term, its light sent out by direction as the reference particle's
+      // (angularClosure at its exit direction −v·l)
+      float own = lit * multipleScatteringFromTable(multipleSourceAt(S, v, l, rho * od.x), tau) *
+                  angularClosure(rho, -dot(dir, uSunDirection));
       // the cloud sphere: the local cloud's column (localCloudAlongSun), less the particle's own
       // chords, weighs it (less 0.01: a cloud that thin is none, and reads at three points
       // differ by the volume's fixed-point rounding, ~10⁻³); the cloud beyond the window toward

@@ -1,0 +1,40 @@
+#pragma once
+// The angular closure K(ρ, μ) of a particle's own multiple-scattering term (docs/LIGHTING.md, "The
+// particle's own term, closed per exit direction"): the factor by which the renderer scales the
+// light the own-term model sends toward exit direction μ = ω_out · l (l toward the sun) from a
+// particle of density scale ρ, so that it sends what the reference particle does. Computed by
+// the baker (bake/AngularClosureBaker.h) and carried by the multiple table in its parameters under
+// "angular_closure" (lut_formats/FORMAT.md); particle.frag.glsl's angularClosure() reads it.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace cloudlut {
+
+// Largest number of density nodes or μ bins a closure may have (the shader's uniform array holds
+// kMaxAngularClosureAxis² values).
+inline constexpr int kMaxAngularClosureAxis = 16;
+
+struct AngularClosure {
+  float log2RhoFirst = 0.0f;          // log2 ρ of the first density node
+  float log2RhoStep = 1.0f;           // node spacing, octaves (> 0)
+  int densityNodes = 1, muBins = 1;   // each 1 … kMaxAngularClosureAxis
+  std::vector<float> values{1.0f};    // K (dimensionless), [node · muBins + bin], each in [1/4, 4]
+  std::vector<float> relativeErrors;  // the Monte Carlo's relative standard error of each K, or empty
+};
+
+// The record: {"log2_rho_first", "log2_rho_step", "density_nodes", "mu_bins", "values",
+// "relative_errors"}.
+nlohmann::json angularClosureToJson(const AngularClosure& closure);
+
+// The closure a record describes, or nullopt with `problem` saying which field is wrong and why.
+std::optional<AngularClosure> angularClosureFromJson(const nlohmann::json& record, std::string& problem);
+
+// K at density scale ρ and exit direction μ ∈ [−1, 1]: linear in log2 ρ between the nodes and in μ
+// between the bins' centres, held beyond the first and last (particle.frag.glsl's
+// angularClosure(), the same arithmetic).
+float angularClosureAt(const AngularClosure& closure, float rho, float mu);
+
+}  // namespace cloudlut
