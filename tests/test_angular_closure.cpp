@@ -48,8 +48,8 @@ TEST_CASE("angular closure: the homogeneous sphere's own tables need none", "[cl
   const bake::ScatteringResult& sc = test::defaultScattering(0);
   REQUIRE(sc.multiple);
   const Table4D od = depthTable(DensityModel::Sphere);
-  const AngularClosure k = bake::computeAngularClosure(od, *sc.multiple, ReferenceParticle(DensityModel::Sphere, 1),
-                                                       defaults::kFirstPhase, defaults::kLaterPhase, smallSettings());
+  const AngularClosure k = *bake::computeAngularClosure(od, *sc.multiple, ReferenceParticle(DensityModel::Sphere, 1),
+                                                        defaults::kFirstPhase, defaults::kLaterPhase, smallSettings());
   REQUIRE(k.values.size() == 3u * 8u);
   double worst = 0.0;
   for (std::size_t i = 0; i < k.values.size(); ++i) {
@@ -66,8 +66,8 @@ TEST_CASE("angular closure: the homogeneous sphere's own tables need none", "[cl
 TEST_CASE("angular closure: the noise particle's dense core sends too much light back toward the sun", "[closure]") {
   const bake::ScatteringResult& sc = test::defaultScattering(0);
   const Table4D od = depthTable(DensityModel::Noise);
-  const AngularClosure k = bake::computeAngularClosure(od, *sc.multiple, ReferenceParticle(DensityModel::Noise, 1),
-                                                       defaults::kFirstPhase, defaults::kLaterPhase, smallSettings());
+  const AngularClosure k = *bake::computeAngularClosure(od, *sc.multiple, ReferenceParticle(DensityModel::Noise, 1),
+                                                        defaults::kFirstPhase, defaults::kLaterPhase, smallSettings());
   // ρ = 8 (node 2): the model's sphere at the chords' mean density reflects like a dense sphere
   // (docs/LIGHTING.md measured K 0.76 toward the sun, 1.15–1.33 forward and sideways)
   const float towardSun = k.values[2 * 8 + 7], sideways = k.values[2 * 8 + 2];
@@ -83,12 +83,32 @@ TEST_CASE("angular closure: the same whatever the thread count", "[closure]") {
   s.photonsPerDirection = 500;
   const auto run = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-    return bake::computeAngularClosure(od, *sc.multiple, ReferenceParticle(DensityModel::Noise, 1), defaults::kFirstPhase,
-                                       defaults::kLaterPhase, s);
+    return *bake::computeAngularClosure(od, *sc.multiple, ReferenceParticle(DensityModel::Noise, 1),
+                                        defaults::kFirstPhase, defaults::kLaterPhase, s);
   };
   const AngularClosure one = run(1), two = run(2);
   CHECK(one.values == two.values);
   CHECK(one.relativeErrors == two.relativeErrors);
+}
+
+TEST_CASE("angular closure: density nodes too dense for the Monte Carlo are left out", "[closure]") {
+  const bake::ScatteringResult& sc = test::defaultScattering(0);
+  const Table4D od = depthTable(DensityModel::Noise);
+  bake::AngularClosureSettings s = smallSettings();
+  s.sunDirections = 1;
+  s.photonsPerDirection = 20;
+  s.viewDirections = 8;
+  s.discSide = 4;
+  s.log2RhoFirst = 3.0f;  // σ·ρ = 103, 206, 412 with the default σ = 12.87
+  s.log2RhoStep = 1.0f;
+  const auto partial = bake::computeAngularClosure(od, *sc.multiple, ReferenceParticle(DensityModel::Noise, 1),
+                                                   defaults::kFirstPhase, defaults::kLaterPhase, s);
+  REQUIRE(partial);
+  CHECK(partial->densityNodes == 2);
+  CHECK(partial->values.size() == 2u * 8u);
+  s.log2RhoFirst = 5.0f;  // 412: none
+  CHECK_FALSE(bake::computeAngularClosure(od, *sc.multiple, ReferenceParticle(DensityModel::Noise, 1),
+                                          defaults::kFirstPhase, defaults::kLaterPhase, s));
 }
 
 TEST_CASE("angular closure: the record's rules and the interpolation", "[closure]") {

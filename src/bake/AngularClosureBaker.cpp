@@ -112,20 +112,25 @@ void integrateModel(Tally& t, const Table4D& od, const Table4D& multiple, float 
 
 }  // namespace
 
-AngularClosure computeAngularClosure(const Table4D& od, const Table4D& multiple, const ReferenceParticle& particle,
+std::optional<AngularClosure> computeAngularClosure(const Table4D& od, const Table4D& multiple, const ReferenceParticle& particle,
                                      const Phase& first, const Phase& later, const AngularClosureSettings& s,
                                      const ProgressFn& progress) {
-  if (s.densityNodes < 1 || s.densityNodes > 16 || s.muBins < 1 || s.muBins > 16 || s.sunDirections < 1 ||
+  if (s.densityNodes < 1 || s.densityNodes > kMaxAngularClosureAxis || s.muBins < 1 ||
+      s.muBins > kMaxAngularClosureAxis || s.sunDirections < 1 ||
       s.photonsPerDirection < 1 || s.viewDirections < 1 || s.discSide < 1 || !(s.log2RhoStep > 0.0f))
     throw std::invalid_argument("angular closure: settings out of range");
   const double sigma = unitOpticalRadius(od);
   const long long maxOrder = maxOrderOf(multiple);
-  const int tasks = s.densityNodes * s.sunDirections;
+  const auto rhoOf = [&](int node) { return std::exp2(s.log2RhoFirst + s.log2RhoStep * static_cast<float>(node)); };
+  int nodes = 0;
+  while (nodes < s.densityNodes && sigma * rhoOf(nodes) <= kMaxClosureOpticalRadius) ++nodes;
+  if (nodes == 0) return std::nullopt;
+  const int tasks = nodes * s.sunDirections;
   std::vector<Tally> tallies(tasks);
   std::atomic<int> done{0};
   tbb::parallel_for(0, tasks, [&](int task) {
     const int node = task / s.sunDirections;
-    const float rho = std::exp2(s.log2RhoFirst + s.log2RhoStep * static_cast<float>(node));
+    const float rho = rhoOf(node);
     const glm::dvec3 l = fibonacciDirection(task % s.sunDirections, s.sunDirections);
     Tally& t = tallies[task];
     t.power.assign(s.muBins, 0.0);
@@ -140,9 +145,9 @@ AngularClosure computeAngularClosure(const Table4D& od, const Table4D& multiple,
   c.values.clear();
   c.log2RhoFirst = s.log2RhoFirst;
   c.log2RhoStep = s.log2RhoStep;
-  c.densityNodes = s.densityNodes;
+  c.densityNodes = nodes;
   c.muBins = s.muBins;
-  for (int node = 0; node < s.densityNodes; ++node)
+  for (int node = 0; node < nodes; ++node)
     for (int b = 0; b < s.muBins; ++b) {
       // sums in task order: the same whatever the thread count
       double power = 0.0, power2 = 0.0, model = 0.0;

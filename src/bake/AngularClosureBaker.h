@@ -1,6 +1,6 @@
 #pragma once
 // The angular closure of an isolated particle's multiple scattering (docs/LIGHTING.md, "The
-// particle's own term closed per exit direction").
+// particle's own term, closed per exit direction").
 //
 // The runtime's own term of a particle reads the multiple table, the homogeneous sphere's, at the
 // view chord's mean density ρ·T̄ (seed §4.4). Over all view directions that model sends out about
@@ -17,6 +17,7 @@
 // over a fixed set of sun directions in the particle's frame. The renderer multiplies the own
 // term by K at the particle's density and its exit direction (−v · l).
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/AngularClosure.h"
@@ -40,10 +41,16 @@ struct AngularClosureSettings {
 };
 
 
+// Densest particle the Monte Carlo follows: optical radius σ·ρ of a density node (a photon makes
+// about (σρ)² steps; the default table's densest node, ρ = 8, is 103). Denser nodes are left
+// out, and the closure's last node holds for them.
+inline constexpr double kMaxClosureOpticalRadius = 256.0;
+
 // K for the multiple table `multiple` (its orders: 2 … N, or every order when "converged") and the
-// reference particle of the optical-depth table `opticalDepth`. Deterministic for a seed,
-// whatever the thread count. Throws std::invalid_argument on settings out of range.
-AngularClosure computeAngularClosure(const Table4D& opticalDepth, const Table4D& multiple,
+// reference particle of the optical-depth table `opticalDepth`, over the settings' density nodes
+// up to kMaxClosureOpticalRadius; nullopt when even the first node is denser. Deterministic for
+// a seed, whatever the thread count. Throws std::invalid_argument on settings out of range.
+std::optional<AngularClosure> computeAngularClosure(const Table4D& opticalDepth, const Table4D& multiple,
                                      const ReferenceParticle& particle, const Phase& first, const Phase& later,
                                      const AngularClosureSettings& settings = {}, const ProgressFn& progress = {});
 

@@ -45,8 +45,9 @@ struct RenderFixture {
       if (closure) {
         bake::AngularClosureSettings s;
         s.photonsPerDirection = closurePhotons;
-        multiple.parameters()["angular_closure"] = angularClosureToJson(
-            bake::computeAngularClosure(od, multiple, particle, medium.first, medium.later, s));
+        const auto k = bake::computeAngularClosure(od, multiple, particle, medium.first, medium.later, s);
+        if (!k) throw std::runtime_error("the default medium has no angular closure");
+        multiple.parameters()["angular_closure"] = angularClosureToJson(*k);
       }
       writeLutSet(dir, {&od, &*sc.single, &multiple});
     });

@@ -148,11 +148,12 @@ void main() {
   }
   // Multiple scattering, per unit sun irradiance, already lit (the sunlight factor included).
   //   seed:  the mean source of the particle's sphere at ρ, times the sunlight;
-  //   cloud: the particle's sphere at the ray's density ρ·T̄, closed per exit direction, lit by the larger of the direct and
-  //          the diffuse transmittance through the cloud toward the sun, blended with the cloud
-  //          sphere of the local cloud around the mean scattering point (localCloudAlongSun,
-  //          cloudSphereEntry, cloudSphereDensity), lit the same way through the cloud beyond it,
-  //          by the share of the local column that is not the particle's own.
+  //   cloud: the particle's sphere at the ray's density ρ·T̄, closed per exit direction, lit by
+  //          the larger of the direct and the diffuse transmittance through the cloud toward the
+  //          sun, blended with the cloud sphere of the local cloud around the mean scattering
+  //          point (localCloudAlongSun, cloudSphereEntry, cloudSphereDensity), lit the same way
+  //          through the cloud beyond it, by the share of the local column that is not the
+  //          particle's own.
   float multiple = 0.0;
   if ((uTerms & 2) != 0) {
     if (uLighting == 0) {
