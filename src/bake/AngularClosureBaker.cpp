@@ -79,16 +79,20 @@ void tracePhotons(Tally& t, const ReferenceParticle& particle, double sigma, con
   }
 }
 
-// The own-term model's power by exit direction −v: Σ over view directions v and the chords of
-// the disc facing v of (1 − e^{−τ}) J̄M(S, v, l, ρT̄) dA dω (particle.frag.glsl's own term
-// without its sunlight factor, 1 for an isolated particle).
+// The own-term model's power by exit direction −v: per μ bin, the mean over the view directions v
+// in it of Σ over the chords of the disc facing v of (1 − e^{−τ}) J̄M(S, v, l, ρT̄) dA
+// (particle.frag.glsl's own term without its sunlight factor, 1 for an isolated particle), times
+// the bin's exact solid angle 4π/bins (a bin's count of Fibonacci directions varies with l by
+// ±10%, which summing them would pass into K).
 void integrateModel(Tally& t, const Table4D& od, const Table4D& multiple, float rho, const glm::dvec3& l,
                     const AngularClosureSettings& s) {
   const ScatteringStorage storage = scatteringStorage(multiple);
   const float rhoMin = std::exp2(scatteringAxesRecord(multiple).x);
   const int n = s.discSide;
-  const double dA = (2.0 / n) * (2.0 / n), dOmega = 4.0 * kPi / s.viewDirections;
+  const double dA = (2.0 / n) * (2.0 / n), binSolidAngle = 4.0 * kPi / s.muBins;
   const glm::vec3 lf(l);
+  std::vector<double> sums(static_cast<std::size_t>(s.muBins), 0.0);
+  std::vector<int> counts(static_cast<std::size_t>(s.muBins), 0);
   for (int iv = 0; iv < s.viewDirections; ++iv) {
     const glm::dvec3 v = fibonacciDirection(iv, s.viewDirections);
     glm::dvec3 e1, e2;
@@ -106,8 +110,12 @@ void integrateModel(Tally& t, const Table4D& od, const Table4D& multiple, float 
                              std::min(rhoChord / rhoMin, 1.0f);
         sum += scatteringFromStored(storage, stored, chord.opticalDepth);
       }
-    t.model[muBin(-glm::dot(v, l), s.muBins)] += sum * dA * dOmega;
+    const auto b = static_cast<std::size_t>(muBin(-glm::dot(v, l), s.muBins));
+    sums[b] += sum * dA;
+    ++counts[b];
   }
+  for (std::size_t b = 0; b < sums.size(); ++b)
+    if (counts[b] > 0) t.model[b] += sums[b] / counts[b] * binSolidAngle;
 }
 
 }  // namespace
