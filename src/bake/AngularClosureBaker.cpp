@@ -177,4 +177,10 @@ std::optional<AngularClosure> computeAngularClosure(const Table4D& od, const Tab
   return c;
 }
 
+void attachAngularClosure(Table4D& multiple, const Table4D& od, const ReferenceParticle& particle, const Phase& first,
+                          const Phase& later, const AngularClosureSettings& settings, const ProgressFn& progress) {
+  if (const auto closure = computeAngularClosure(od, multiple, particle, first, later, settings, progress))
+    multiple.parameters()["angular_closure"] = angularClosureToJson(*closure);
+}
+
 }  // namespace cloudlut::bake

@@ -55,4 +55,10 @@ std::optional<AngularClosure> computeAngularClosure(const Table4D& opticalDepth,
                                      const AngularClosureSettings& settings = {}, const ProgressFn& progress = {});
 
 
+// Computes the closure of `multiple` and records it in its parameters under "angular_closure";
+// records nothing (K = 1) when computeAngularClosure finds no node it can follow.
+void attachAngularClosure(Table4D& multiple, const Table4D& opticalDepth, const ReferenceParticle& particle,
+                          const Phase& first, const Phase& later, const AngularClosureSettings& settings = {},
+                          const ProgressFn& progress = {});
+
 }  // namespace cloudlut::bake

@@ -87,11 +87,8 @@ nlohmann::json bakeLutSet(LutSetPlan& plan, const ProgressFn& progress, const st
     done(stageDone);
     if (result.multiple && closureDepth) {
       const auto tClosure = std::chrono::steady_clock::now();
-      const std::optional<AngularClosure> closure =
-          computeAngularClosure(*closureDepth, *result.multiple, ReferenceParticle(plan.model, plan.seed),
-                                plan.sc.firstPhase, plan.sc.laterPhase, plan.closure, progress);
-      // none when the particle is too dense for the Monte Carlo at every node (K = 1)
-      if (closure) result.multiple->parameters()["angular_closure"] = angularClosureToJson(*closure);
+      attachAngularClosure(*result.multiple, *closureDepth, ReferenceParticle(plan.model, plan.seed),
+                           plan.sc.firstPhase, plan.sc.laterPhase, plan.closure, progress);
       timings["angular_closure_s"] = secondsSince(tClosure);
       done(stageDone);
     }

@@ -111,9 +111,8 @@ bool ensureLutSet(const fs::path& dir, const Medium& medium, bool quick, int ord
     // the multiple table's angular closure, as `cloudlut bake` attaches it (bake/AngularClosure.h)
     bake::AngularClosureSettings closure;
     if (quick) closure.photonsPerDirection = 2000;
-    if (const auto k = bake::computeAngularClosure(depth, *r.multiple, ReferenceParticle(medium.model, medium.seed),
-                                                   sc.firstPhase, sc.laterPhase, closure))
-      r.multiple->parameters()["angular_closure"] = angularClosureToJson(*k);
+    bake::attachAngularClosure(*r.multiple, depth, ReferenceParticle(medium.model, medium.seed), sc.firstPhase,
+                               sc.laterPhase, closure);
     nlohmann::json entries = nlohmann::json::object();
     for (const Table4D* t : {&depth, static_cast<const Table4D*>(&*r.single), static_cast<const Table4D*>(&*r.multiple)})
       entries[t->name()] = io::writeTableFiles(*t, io::SampleType::Float, dir, {.bin = true, .exr = false});

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/AngularClosure.h"
 #include "core/Errors.h"
 #include "core/Defaults.h"
 #include "core/Phase.h"
@@ -136,18 +135,16 @@ void ShadingTables::bind(const ProgramUniforms& uniforms) const {
   uniforms.set("uFirstPhaseKind", firstPhaseKind_);
   uniforms.set("uFirstPhaseParam", firstPhaseParam_);
   uniforms.set("uLaterAsymmetry", laterAsymmetry_);
-  uniforms.set("uAngularClosureRho", glm::vec4(closureRho_, 0.0f, 0.0f));
-  uniforms.set("uAngularClosureDims", glm::ivec3(closureDims_, 0));
-  uniforms.set("uAngularClosure", closure_);
+  uniforms.set("uAngularClosureRho", glm::vec4(closure_.log2RhoFirst, closure_.log2RhoStep, 0.0f, 0.0f));
+  uniforms.set("uAngularClosureDims", glm::ivec3(closure_.densityNodes, closure_.muBins, 0));
+  uniforms.set("uAngularClosure", closure_.values);
 }
 
 void ShadingTables::readAngularClosure(const nlohmann::json& record) {
   std::string problem;
   const std::optional<AngularClosure> closure = angularClosureFromJson(record, problem);
   if (!closure) throw FileError(luts_, "multiple_scattering: parameters.angular_closure: " + problem);
-  closureRho_ = glm::vec2(closure->log2RhoFirst, closure->log2RhoStep);
-  closureDims_ = glm::ivec2(closure->densityNodes, closure->muBins);
-  closure_ = closure->values;
+  closure_ = *closure;
 }
 
 }  // namespace cloudlut::render

@@ -7,19 +7,17 @@
 // σ = extinction_per_m · radius_m, the scattering tables' density axis (log2 ρ at its ends) and θS
 // warp, and the single table's first phase function.
 #include <string>
-#include <vector>
 
-#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "core/AngularClosure.h"
 #include "io/LutIo.h"
 #include "render/GlContext.h"
 #include "render/GlFunctions.h"
 #include "render/GlResources.h"
 
 namespace cloudlut::render {
-
 
 class ShadingTables {
  public:
@@ -69,11 +67,9 @@ class ShadingTables {
   int firstPhaseKind_ = 2;
   float firstPhaseParam_ = 0.9f;
   float laterAsymmetry_ = 0.0f;
-  // the multiple table's angular closure K(ρ, μ) (core/AngularClosure.h): (log2 ρ of the first
-  // node, node spacing), (nodes, μ bins), values; one node and bin of 1 when the table has none
-  glm::vec2 closureRho_{0.0f, 1.0f};
-  glm::ivec2 closureDims_{1, 1};
-  std::vector<float> closure_{1.0f};
+  // the multiple table's angular closure K(ρ, μ) (core/AngularClosure.h); its default, one node
+  // and one bin of 1, when the table has none
+  AngularClosure closure_;
 };
 
 }  // namespace cloudlut::render

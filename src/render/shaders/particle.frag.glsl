@@ -44,11 +44,11 @@ float multipleSourceAt(vec3 S, vec3 v, vec3 l, float rho) {
   return cloudlutSample4D(uMultiple, x, uMultipleDims).x * min(rho / rhoMin, 1.0);
 }
 
-// The multiple table's angular closure K(ρ, μ) (bake/AngularClosure.h, docs/LIGHTING.md): the
+// The multiple table's angular closure K(ρ, μ) (core/AngularClosure.h, docs/LIGHTING.md): the
 // Monte Carlo power of orders 2 … N leaving the reference particle toward exit directions μ =
 // ω_out · l over the power the own-term model sends there. Nodes uAngularClosureRho.x +
 // i·uAngularClosureRho.y in log2 ρ (i < uAngularClosureDims.x), uniform bins of μ over [−1, 1]
-// (uAngularClosureDims.y); kMaxAngularClosureAxis² values (render/ShadingTables.h).
+// (uAngularClosureDims.y); kMaxAngularClosureAxis² values (core/AngularClosure.h).
 uniform vec4 uAngularClosureRho;
 uniform ivec3 uAngularClosureDims;
 uniform float uAngularClosure[256];
