@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/Errors.h"
 #include "render/GlContext.h"
 #include "render/Renderer.h"
 #include "scene/Scene.h"
@@ -101,34 +102,87 @@ TEST_CASE("volume order: more than 32 overlapping segments resolve bit-identical
               stats.truncatedPixels);
 }
 
-TEST_CASE("volume order: a stack of 60 disjoint particles composites front to back like alpha blending",
+TEST_CASE("volume order: short lists resolve without arrays, as the chunked resolve does, in any order",
+          "[render][volume]") {
+  // Five spheres of radius 1.5, 0.9 apart along the view: pixels near the axis cross up to five
+  // overlapping segments, those farther out fewer. The array-free resolve takes the lists of up
+  // to kShortListCapacity segments, the chunked one the rest; with volumeShortList = 0 the
+  // chunked one takes every list. Both composite a list in one exact sweep, so they must agree to
+  // rounding; and each must give the same bits whatever order the particles are drawn in.
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
+  RenderSettings s = columnSettings(40.0f);
+  s.blend = BlendMode::Volume;
+  const std::vector<Particle> ps = column(5, 1.5f, 0.9f, 0.8f, 0.3f, 0.6f);
+  RenderStats stats;
+  const Image image = renderer.render(ps, s, &stats);
+  REQUIRE(stats.fragmentOverflow == 0);
+  REQUIRE(stats.longListPixels > 0);                          // some pixels see all five
+  REQUIRE(stats.fragments > 3 * stats.longListPixels + 200);  // and many see two to four
+  RenderSettings chunked = s;
+  chunked.volumeShortList = 0;
+  RenderStats chunkedStats;
+  const Image reference = renderer.render(ps, chunked, &chunkedStats);
+  double worstColour = 0, worstAlpha = 0;
+  for (std::size_t i = 0; i < image.rgba.size(); ++i) {
+    const double d = std::abs(double(image.rgba[i]) - double(reference.rgba[i]));
+    if (i % 4 == 3)
+      worstAlpha = std::max(worstAlpha, d);
+    else
+      worstColour = std::max(worstColour, d / std::max(1e-3, double(reference.rgba[i])));
+  }
+  std::printf("[volume order] 5 overlapping spheres: %zu fragments, %zu pixels over %d segments; against the "
+              "chunked resolve opacity %.2e, colour (relative) %.2e\n",
+              stats.fragments, stats.longListPixels, kShortListCapacity, worstAlpha, worstColour);
+  CHECK(chunkedStats.longListPixels > stats.longListPixels);
+  CHECK(worstAlpha < 1e-5);
+  CHECK(worstColour < 1e-4);
+
+  std::vector<Particle> reversed(ps.rbegin(), ps.rend());
+  const std::vector<Particle> shuffled = {ps[2], ps[4], ps[0], ps[3], ps[1]};
+  for (const auto& order : {reversed, shuffled}) {
+    const Image again = renderer.render(order, s);
+    CHECK(mismatches(again.rgba, image.rgba) == 0);
+    CHECK(mismatches(again.distance, image.distance) == 0);
+  }
+
+  RenderSettings bad = s;
+  bad.volumeShortList = kShortListCapacity + 1;
+  CHECK_THROWS_AS(renderer.render(ps, bad), UsageError);
+}
+
+TEST_CASE("volume order: a stack of disjoint particles composites front to back like alpha blending",
           "[render][volume]") {
   RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
   Renderer& renderer = rig.renderer;
   RenderSettings s = columnSettings(3.0f);
   // Spheres of radius 0.2, 0.45 apart: no two overlap, so no ray's segments do, and volume
-  // blending reduces to alpha blending in depth order (seed eqs. 16–17).
-  const std::vector<Particle> ps = column(60, 0.2f, 0.45f, 0.03f, 0.001f, 0.02f);
-  s.blend = BlendMode::Alpha;
-  const Image alpha = renderer.render(ps, s);
-  s.blend = BlendMode::Volume;
-  RenderStats stats;
-  const Image volume = renderer.render(ps, s, &stats);  // front to back: the far ones arrive last
-  REQUIRE(stats.fragmentOverflow == 0);
-  REQUIRE(stats.truncatedPixels > 20);
-  double worstColour = 0, worstAlpha = 0;
-  for (std::size_t i = 0; i < volume.rgba.size(); ++i) {
-    const double d = std::abs(double(volume.rgba[i]) - double(alpha.rgba[i]));
-    if (i % 4 == 3)
-      worstAlpha = std::max(worstAlpha, d);
-    else
-      worstColour = std::max(worstColour, d / std::max(1e-3, double(alpha.rgba[i])));
+  // blending reduces to alpha blending in depth order (seed eqs. 16–17). Four of them: the
+  // array-free resolve of short lists; sixty: the chunked resolve, over more than one chunk.
+  for (const int count : {4, 60}) {
+    const std::vector<Particle> ps = column(count, 0.2f, 0.45f, 0.03f, 0.001f, 0.02f);
+    s.blend = BlendMode::Alpha;
+    const Image alpha = renderer.render(ps, s);
+    s.blend = BlendMode::Volume;
+    RenderStats stats;
+    const Image volume = renderer.render(ps, s, &stats);  // front to back: the far ones arrive last
+    REQUIRE(stats.fragmentOverflow == 0);
+    if (count == 60) REQUIRE(stats.truncatedPixels > 20);
+    if (count == 4) REQUIRE(stats.longListPixels == 0);
+    double worstColour = 0, worstAlpha = 0;
+    for (std::size_t i = 0; i < volume.rgba.size(); ++i) {
+      const double d = std::abs(double(volume.rgba[i]) - double(alpha.rgba[i]));
+      if (i % 4 == 3)
+        worstAlpha = std::max(worstAlpha, d);
+      else
+        worstColour = std::max(worstColour, d / std::max(1e-3, double(alpha.rgba[i])));
+    }
+    std::printf("[volume order] %d disjoint spheres, %zu pixels over 32 segments: max |volume - alpha| opacity "
+                "%.2e, colour (relative) %.2e\n",
+                count, stats.truncatedPixels, worstAlpha, worstColour);
+    CHECK(worstAlpha < 1e-4);
+    CHECK(worstColour < 1e-3);
   }
-  std::printf("[volume order] 60 disjoint spheres, %zu pixels over 32 segments: max |volume - alpha| opacity %.2e, "
-              "colour (relative) %.2e\n",
-              stats.truncatedPixels, worstAlpha, worstColour);
-  CHECK(worstAlpha < 1e-4);
-  CHECK(worstColour < 1e-3);
 }
 
 TEST_CASE("volume order: a pixel beyond the GL's loop budget is reported, never silently wrong", "[render][volume]") {

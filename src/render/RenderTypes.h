@@ -22,6 +22,10 @@ inline constexpr int kLightTiles = 64;
 // (render/VolumeResolve.h; pixels with more take ⌈count / kMaxSegmentsPerPixel⌉ chunks), and the
 // default size of the fragment node pool per pixel of the particle buffer.
 inline constexpr int kMaxSegmentsPerPixel = 32;
+// Lists of at most this many segments are resolved without arrays (render/VolumeResolve.h), the
+// longer ones in chunks of kMaxSegmentsPerPixel; both composite such a list in one exact sweep.
+// The array-free sweep walks a list 2L times, so it pays only for short lists.
+inline constexpr int kShortListCapacity = 4;
 inline constexpr int kDefaultFragmentsPerPixel = 16;
 
 enum class BlendMode { Alpha, Volume };
@@ -59,6 +63,9 @@ struct RenderSettings {
   bool smoothOcclusion = true;  // its density-weighted smoothing pass
   int fragmentsPerPixel = kDefaultFragmentsPerPixel;  // volume: node pool size per low-res pixel
   long double volumePoolBytes = 0;  // volume: budget of one tile's node pool (0: the default; VolumeResolve.h)
+  // volume: the longest list resolved without arrays, 0 … kShortListCapacity (VolumeResolve.h; the
+  // image is the same up to rounding whatever it is, only the time changes)
+  int volumeShortList = kShortListCapacity;
   LightingModel lighting = LightingModel::Cloud;
   SunlightModel sunlight = SunlightModel::Volume;
   // With view.lighting.atmosphere: the sky's scattering orders, 1 = single scattering only
@@ -111,6 +118,7 @@ struct RenderStats {
   std::size_t fragments = 0;         // volume: fragments produced
   std::size_t fragmentOverflow = 0;  // volume: fragments alpha-blended for want of pool room
   std::size_t truncatedPixels = 0;   // volume: pixels with more than kMaxSegmentsPerPixel segments
+  std::size_t longListPixels = 0;    // volume: pixels with more than volumeShortList segments
   std::size_t resolveCutPixels = 0;  // volume: pixels whose resolve the GL cut short (VolumeResolve.h)
   std::size_t volumeTiles = 0;       // volume: screen tiles, each drawn and resolved on its own
   std::size_t volumeRedrawnTiles = 0;  // volume: tiles over the pool's room, undone and split in two

@@ -84,6 +84,9 @@ struct Renderer::Impl {
       throw UsageError("--downscale: expected 1, 2 or 4, got " + std::to_string(s.downscale));
     if (s.fragmentsPerPixel < 1 || s.fragmentsPerPixel > 1024)
       throw UsageError("fragments per pixel: expected 1 to 1024, got " + std::to_string(s.fragmentsPerPixel));
+    if (s.volumeShortList < 0 || s.volumeShortList > kShortListCapacity)
+      throw UsageError("volume short list: expected 0 to " + std::to_string(kShortListCapacity) + " segments, got " +
+                       std::to_string(s.volumeShortList));
     context.makeCurrent();
   }
 
@@ -148,7 +151,7 @@ struct Renderer::Impl {
     requireTargetSize(w, h, s);
     const bool blendVolume = s.blend == BlendMode::Volume;
     if (blendVolume)
-      volume.prepare(w, h, s.fragmentsPerPixel, s.volumePoolBytes);
+      volume.prepare(w, h, s.fragmentsPerPixel, s.volumePoolBytes, s.volumeShortList);
     else
       volume.bindUnused();
 
@@ -168,6 +171,7 @@ struct Renderer::Impl {
         stats->fragments = c.fragments;
         stats->fragmentOverflow = c.overflow;
         stats->truncatedPixels = c.truncatedPixels;
+        stats->longListPixels = c.longLists;
         stats->resolveCutPixels = c.cutPixels;
         stats->resolveSeconds = volume.resolveSeconds();
         stats->volumeTiles = c.tiles;

@@ -12,7 +12,8 @@ namespace cloudlut::render {
 
 namespace {
 
-constexpr GLuint kPoolBinding = 2, kCutBinding = 3;
+constexpr GLuint kPoolBinding = 2, kCutBinding = 3, kLongListBinding = 4;
+constexpr unsigned kLongGroup = 64;  // volume_resolve.comp.glsl: local_size_x
 constexpr GLuint kHeadsUnit = 0, kColourUnit = 1;
 // The pool (volume_fragments.glsl, block Fragments): count, capacity, overflow, truncated pixels.
 constexpr std::size_t kCounterWords = 4;
@@ -58,10 +59,13 @@ VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long 
 }
 
 VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
-    : gl_(gl), budget_(budget), pool_(gl), cut_(gl) {
-  program_ = linkComputeProgram(gl, {"volume_fragments.glsl", "loop_budget.glsl", "volume_resolve.comp.glsl"},
-                                fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel) +
-                                    glslDefine("GROUP_SIDE", kGroupSide));
+    : gl_(gl), budget_(budget), pool_(gl), cut_(gl), longLists_(gl) {
+  shortProgram_ = linkComputeProgram(
+      gl, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_short.comp.glsl"},
+      fragmentDefines() + glslDefine("GROUP_SIDE", kGroupSide));
+  longProgram_ = linkComputeProgram(
+      gl, {"volume_fragments.glsl", "volume_pieces.glsl", "loop_budget.glsl", "volume_resolve.comp.glsl"},
+      fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel));
 }
 
 VolumeResolve::~VolumeResolve() {
@@ -71,13 +75,17 @@ VolumeResolve::~VolumeResolve() {
 
 std::string VolumeResolve::fragmentDefines() { return glslDefine("FRAGMENT_NODE_WORDS", kFragmentNodeWords); }
 
-VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel, long double budgetBytes) {
+VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel, long double budgetBytes,
+                                    int shortList) {
   const long double budget = std::min(budgetBytes > 0 ? budgetBytes : kDefaultVolumePoolBytes, budget_.limitBytes());
   tiling_ = planVolumeTiles(width, height, fragmentsPerPixel, budget);
   budget_.require(static_cast<long double>(tiling_.poolBytes),
                   "volume blending of a " + std::to_string(tiling_.tileWidth) + "x" + std::to_string(tiling_.tileHeight) +
                       " tile with " + std::to_string(fragmentsPerPixel) + " fragments per pixel");
   pool_.ensure(tiling_.poolBytes);
+  // One word per pixel of a tile (a seventh of a pool that holds one node per pixel).
+  longLists_.ensure(4 * (1 + static_cast<std::size_t>(tiling_.tileWidth) * static_cast<std::size_t>(tiling_.tileHeight)));
+  shortList_ = shortList;
   if (!heads_ || width != width_ || height != height_) {
     if (heads_) gl_.DeleteTextures(1, &heads_);
     gl_.GenTextures(1, &heads_);
@@ -167,24 +175,39 @@ void VolumeResolve::bindUnused() {
 
 void VolumeResolve::resolveTile(GLuint colourTexture, int x0, int y0, int x1, int y1) {
   fullBarrier(gl_);
-  gl_.UseProgram(program_.id());
-  pool_.bind(kPoolBinding);
-  gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-  gl_.BindImageTexture(kColourUnit, colourTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  gl_.Uniform2i(program_.uniform("uOrigin"), x0, y0);
-  gl_.Uniform2i(program_.uniform("uEnd"), x1, y1);
-  gl_.Uniform1i(program_.uniform("uProbePasses"), kLoopProbePasses);
   const GLuint zero = 0;
   cut_.assign(&zero, sizeof zero);
   cut_.bind(kCutBinding);
+  longLists_.write(0, sizeof zero, &zero);
+  longLists_.bind(kLongListBinding);
+  pool_.bind(kPoolBinding);
+  gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+  gl_.BindImageTexture(kColourUnit, colourTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+
+  // Every pixel of the tile: the short lists resolved, the long ones queued.
+  gl_.UseProgram(shortProgram_.id());
+  gl_.Uniform2i(shortProgram_.uniform("uOrigin"), x0, y0);
+  gl_.Uniform2i(shortProgram_.uniform("uEnd"), x1, y1);
+  gl_.Uniform1i(shortProgram_.uniform("uShortList"), shortList_);
   gl_.DispatchCompute(groupsFor(static_cast<std::size_t>(x1 - x0), kGroupSide),
                       groupsFor(static_cast<std::size_t>(y1 - y0), kGroupSide), 1);
   fullBarrier(gl_);
+  GLuint longCount = 0;
+  longLists_.read(0, sizeof longCount, &longCount);
+
+  // The queued pixels.
+  if (longCount > 0) {
+    gl_.UseProgram(longProgram_.id());
+    gl_.Uniform1i(longProgram_.uniform("uProbePasses"), kLoopProbePasses);
+    gl_.DispatchCompute(groupsFor(longCount, kLongGroup), 1, 1);
+    fullBarrier(gl_);
+  }
   gl_.Finish();
   checkGlError(gl_, "resolving the volume fragment lists");
   GLuint cut = 0;
   cut_.read(0, sizeof cut, &cut);
   counts_.cutPixels += cut;
+  counts_.longLists += longCount;
 }
 
 }  // namespace cloudlut::render

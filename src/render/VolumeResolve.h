@@ -1,14 +1,22 @@
 #pragma once
 // Volume-aware blending (seed §5.5, eqs. 10–17, generalised to any number of overlapping
 // particles): the per-pixel fragment lists that the particle pass fills (a node pool and an r32ui
-// image of list heads; shaders/volume_fragments.glsl) and their exact resolve
-// (shaders/volume_resolve.comp.glsl): each pixel's segments are cut at every entry and exit,
-// inside each piece the extinctions add and the colours combine weighted by extinction, and the
-// pieces are composited front to back. The segments are taken in depth order (a total order:
-// ties by the nodes' other words) in chunks of kMaxSegmentsPerPixel, each chunk composited exactly
-// and the chunks front to back, so the result does not depend on the order the fragments arrived
-// in; the fragments that found no room in the pool (alpha-blended by the particle pass, in
-// arrival order) are composited behind them.
+// image of list heads; shaders/volume_fragments.glsl) and their exact resolve: each pixel's
+// segments are cut at every entry and exit, inside each piece the extinctions add and the colours
+// combine weighted by extinction, and the pieces are composited front to back
+// (shaders/volume_pieces.glsl). The segments are taken in depth order (a total order: ties by the
+// nodes' other words), so the result does not depend on the order the fragments arrived in; the
+// fragments that found no room in the pool (alpha-blended by the particle pass, in arrival order)
+// are composited behind them.
+//
+// Two programs: lists of at most RenderSettings::volumeShortList segments (most pixels) are
+// resolved in one sweep that finds each next entry or exit by walking the list again
+// (shaders/volume_resolve_short.comp.glsl, no arrays); the longer ones are queued and resolved by
+// sorting them in chunks of kMaxSegmentsPerPixel, each chunk composited exactly and the chunks
+// front to back (shaders/volume_resolve.comp.glsl). llvmpipe keeps a shader's arrays in memory
+// and pays for them in every invocation of the program, whether it touches them or not: one
+// program for every pixel made the resolve take 150 of a single particle's 210 ms per frame at
+// 1280×720.
 //
 // Tiles: the node pool of one shader storage block holds the lists of one screen tile at a time.
 // The buffer is cut into bands (or, when one row does not fit, runs of pixels) of at most
@@ -73,7 +81,8 @@ class VolumeResolve {
 
   // Plans the tiles of a width × height buffer for a pool budget of `budgetBytes` (capped by the
   // storage budget; 0: kDefaultVolumePoolBytes), sizes the pool for one tile, empties the lists.
-  VolumeTiling prepare(int width, int height, int fragmentsPerPixel, long double budgetBytes);
+  // Lists of up to shortList segments go to the array-free resolve.
+  VolumeTiling prepare(int width, int height, int fragmentsPerPixel, long double budgetBytes, int shortList);
   // For each tile of the prepared tiling: empties the pool, binds it and the heads for the
   // particle pass (pool at binding 2, heads at image unit 0), scissors to the tile, calls
   // drawTile, then composites the tile's lists into the colour texture (RGBA32F, as prepared):
@@ -89,6 +98,7 @@ class VolumeResolve {
     std::size_t fragments = 0;        // produced
     std::size_t overflow = 0;         // alpha-blended for want of pool room
     std::size_t truncatedPixels = 0;  // pixels with more than kMaxSegmentsPerPixel segments
+    std::size_t longLists = 0;        // pixels with more than the short list's segments
     std::size_t cutPixels = 0;        // pixels whose resolve the GL cut short (loop budget; header)
     std::size_t tiles = 0;            // tiles resolved (the plan's, and the parts of split ones)
     std::size_t redrawnTiles = 0;     // tiles drawn, found over the pool's room and split in two
@@ -103,9 +113,11 @@ class VolumeResolve {
  private:
   const GlFunctions& gl_;
   const StorageBudget& budget_;
-  GlProgram program_;
+  GlProgram shortProgram_, longProgram_;
   StorageBuffer pool_;
-  StorageBuffer cut_;  // the resolve's count of pixels the GL cut short (binding 3)
+  StorageBuffer cut_;        // the resolves' count of pixels the GL cut short (binding 3)
+  StorageBuffer longLists_;  // the pixels left to the long resolve: count, packed x | y << 16 (binding 4)
+  int shortList_ = kShortListCapacity;
   GLuint heads_ = 0, unusedHeads_ = 0;
   int width_ = 0, height_ = 0;
   VolumeTiling tiling_;

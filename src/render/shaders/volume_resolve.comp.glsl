@@ -1,15 +1,21 @@
 // volume_resolve.comp.glsl — volume-aware blending (seed §5.5, eqs. 10–17, generalised to any
-// number of overlapping particles). The particle pass stored, per pixel, a linked list of
-// segments (entry and exit distance along the ray, optical depth τ, radiance R scattered toward
-// the camera, premultiplied). Here each pixel's segments are cut at every entry and exit; inside
-// each piece the extinctions of the particles present add and their sources combine weighted by
-// extinction (eq. 15: κ-weighted colour, C_i = R_i / (1 − e^{−τ_i}) the particle's colour),
+// number of overlapping particles) of the pixels with long lists. The particle pass stored, per
+// pixel, a linked list of segments (entry and exit distance along the ray, optical depth τ,
+// radiance R scattered toward the camera, premultiplied). Here each pixel's segments are cut at
+// every entry and exit; inside each piece the extinctions of the particles present add and their
+// sources combine weighted by extinction (eq. 15: κ-weighted colour, C_i = R_i / (1 − e^{−τ_i})
+// the particle's colour),
 //   T_piece = e^{−Σκ_i d},  C_piece = (Σ κ_i C_i / Σ κ_i) (1 − T_piece),
-// and the pieces are composited front to back (eqs. 16–17). Non-overlapping segments reduce to
-// alpha blending; the transmittance is exactly e^{−Σ τ_i} in any case.
+// and the pieces are composited front to back (eqs. 16–17; volume_pieces.glsl). Non-overlapping
+// segments reduce to alpha blending; the transmittance is exactly e^{−Σ τ_i} in any case.
 //
-// Preceded by volume_fragments.glsl, loop_budget.glsl and the defines of render/VolumeResolve.cpp: MAX_SEGMENTS
-// (kMaxSegmentsPerPixel) and GROUP_SIDE (work groups of GROUP_SIDE² pixels).
+// One invocation per pixel that volume_resolve_short.comp.glsl left in LongLists (more than
+// RenderSettings::volumeShortList segments), in work groups of 64. The arrays below are the invocation's own: a GL
+// that keeps them in memory (llvmpipe) pays for them in every invocation of a program that
+// declares them, used or not, which is why the short lists are resolved by another program.
+//
+// Preceded by volume_fragments.glsl, volume_pieces.glsl, loop_budget.glsl and the defines of
+// render/VolumeResolve.cpp: MAX_SEGMENTS (kMaxSegmentsPerPixel).
 //
 // Order: the segments are taken in chunks of at most MAX_SEGMENTS, nearest first, in the total
 // order of compareKeys (entry distance, then the node's other words): the first chunk is the
@@ -20,12 +26,10 @@
 // blending). The result depends on the set of segments only, not on the order in which the
 // particle pass pushed them; a pixel with L segments walks its list ⌈L / MAX_SEGMENTS⌉ times.
 
-layout(local_size_x = GROUP_SIDE, local_size_y = GROUP_SIDE) in;
+layout(local_size_x = 64) in;
 
 layout(r32ui, binding = 0) uniform readonly uimage2D uHeads;
 layout(rgba32f, binding = 1) uniform image2D uColor;  // in: overflow (rgb, T); out: the result
-uniform ivec2 uOrigin;  // the tile's first pixel (render/VolumeResolve.h: tiles)
-uniform ivec2 uEnd;     // one past its last pixel
 // Pixels whose loops the GL cut short (loop_budget.glsl; a pixel with L segments makes about
 // L²/MAX_SEGMENTS passes).
 layout(std430, binding = 3) buffer ResolveCut {
@@ -40,28 +44,6 @@ vec3 seg_kc[MAX_SEGMENTS];
 float ev_t[2 * MAX_SEGMENTS];
 int ev_i[2 * MAX_SEGMENTS];
 
-// τ / (1 − e^{−τ}), stable at τ → 0.
-float opacityRatio(float tau) { return tau < 1e-4f ? 1.0f + 0.5f * tau : tau / (1.0f - exp(-tau)); }
-// (1 − e^{−x}) / x, stable at x → 0.
-float expRatio(float x) { return x < 1e-4f ? 1.0f - 0.5f * x : (1.0f - exp(-x)) / x; }
-
-// The total order of segments: −1, 0 or +1 as segment (aA, node nA) comes before, ties with or
-// comes after (aB, nB). By entry distance a (world units), then the words of the nodes (exit, τ,
-// radiance) as unsigned integers: nodes that tie hold the same segment, so which of them is taken
-// first changes nothing.
-int compareKeys(float aA, uint nA, float aB, uint nB) {
-  if (aA != aB) return aA < aB ? -1 : 1;
-  if (nA == nB) return 0;
-  uint baseA = nA * uint(FRAGMENT_NODE_WORDS);
-  uint baseB = nB * uint(FRAGMENT_NODE_WORDS);
-  for (uint w = 1u; w < 6u; ++w) {
-    uint x = nodes[baseA + w];
-    uint y = nodes[baseB + w];
-    if (x != y) return x < y ? -1 : 1;
-  }
-  return 0;
-}
-
 // Fills seg_a / seg_node with the (at most MAX_SEGMENTS) first segments of the list at `head`,
 // in key order, that come after the bound: after key (boundA, boundNode), or tying with it
 // beyond the first `boundTaken` such ties (those were taken already). Returns the count; `more`
@@ -72,7 +54,7 @@ int selectChunk(uint head, bool bounded, float boundA, uint boundNode, int bound
   int tiesSeen = 0;
   uint node = head;
   for (int guard = 0; node != FRAGMENT_LIST_END && guard < 1000000; ++guard) {
-    float a = uintBitsToFloat(nodes[node * uint(FRAGMENT_NODE_WORDS)]);
+    float a = segmentEntry(node);
     uint self = node;
     node = fragmentNext(node);
     if (bounded) {
@@ -105,16 +87,7 @@ int selectChunk(uint head, bool bounded, float boundA, uint boundNode, int bound
 // Composites the n selected segments exactly (the header's pieces): their radiance, and in .a
 // their transmittance.
 vec4 compositeChunk(int n) {
-  for (int k = 0; k < n; ++k) {
-    vec3 span = fragmentSpan(seg_node[k]);
-    vec3 r = fragmentRadiance(seg_node[k]);
-    float a = span.x;
-    float b = max(span.y, a + max(1e-6f * abs(a), 1e-9f));
-    float len = b - a;
-    seg_b[k] = b;
-    seg_k[k] = span.z / len;
-    seg_kc[k] = r * (opacityRatio(span.z) / len);  // κ·C = (τ/len) · R / (1 − e^{−τ})
-  }
+  for (int k = 0; k < n; ++k) segmentTerms(seg_node[k], seg_a[k], seg_b[k], seg_k[k], seg_kc[k]);
   // Events: entry (index +k+1) and exit (−k−1), sorted by distance (insertion sort); k is the
   // rank in key order, so ties fall the same way whatever the list order.
   int m = 0;
@@ -147,11 +120,7 @@ vec4 compositeChunk(int n) {
   for (int e = 0; e < m; ++e) {
     if (e > 0 && activeCount > 0) {
       float d = ev_t[e] - ev_t[e - 1];
-      if (d > 0.0f) {
-        float x = max(kappa, 0.0f) * d;
-        color += transmittance * max(kc, vec3(0.0f)) * d * expRatio(x);  // (Σκc/κ)(1 − e^{−κd})
-        transmittance *= exp(-x);
-      }
+      if (d > 0.0f) addPiece(color, transmittance, kappa, kc, d);
     }
     int id = ev_i[e];
     if (id > 0) {
@@ -172,8 +141,8 @@ vec4 compositeChunk(int n) {
 }
 
 void main() {
-  ivec2 px = uOrigin + ivec2(gl_GlobalInvocationID.xy);
-  if (px.x >= uEnd.x || px.y >= uEnd.y) return;
+  if (gl_GlobalInvocationID.x >= longCount) return;
+  ivec2 px = unpackPixel(longPixels[gl_GlobalInvocationID.x]);
   vec4 overflow = imageLoad(uColor, px);
   uint head = imageLoad(uHeads, px).x;
   vec3 color = vec3(0.0f);
