@@ -146,3 +146,30 @@ TEST_CASE("angular closure: the record's rules and the interpolation", "[closure
     CHECK(problem.rfind(b.field, 0) == 0);
   }
 }
+
+TEST_CASE("angular closure: the shared interpolation reproduces a plane between and beyond the nodes", "[closure]") {
+  // K = 1 + 0.1·i + 0.02·j on a grid of 5 density nodes (log2 ρ = −2 … 2 in steps of 1) and 8
+  // μ bins: bilinear interpolation reproduces a plane exactly, so at any (ρ, μ) it must give
+  // 1 + 0.1·s + 0.02·m, s = log2 ρ + 2 and m = (μ + 1)·4 − ½, each clamped to the grid (the
+  // closure is held beyond its first and last node and bin centre).
+  AngularClosure c;
+  c.log2RhoFirst = -2.0f;
+  c.log2RhoStep = 1.0f;
+  c.densityNodes = 5;
+  c.muBins = 8;
+  c.values.clear();  // the default closure holds one value
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 8; ++j) c.values.push_back(1.0f + 0.1f * float(i) + 0.02f * float(j));
+  double worst = 0;
+  int count = 0;
+  for (double log2Rho = -3.3; log2Rho <= 3.3; log2Rho += 0.37)
+    for (double mu = -1.0; mu <= 1.0; mu += 0.093) {
+      const double s = std::clamp(log2Rho + 2.0, 0.0, 4.0), m = std::clamp((mu + 1.0) * 4.0 - 0.5, 0.0, 7.0);
+      const double expected = 1.0 + 0.1 * s + 0.02 * m;
+      const double got = angularClosureAt(c, float(std::exp2(log2Rho)), float(mu));
+      worst = std::max(worst, std::abs(got - expected));
+      ++count;
+    }
+  INFO(count << " points, worst |K - plane| " << worst);
+  CHECK(worst < 1e-5);
+}

@@ -201,3 +201,31 @@ CLOUDLUT_FN vec3 localCloudColumn(float tauSun, float tauSunEnd, float tauFarEnd
 CLOUDLUT_FN float cloudScaleWeight(float columnOutside, float tauColumn) {
   return tauColumn > 0.0f ? clamp(columnOutside / tauColumn, 0.0f, 1.0f) : 0.0f;
 }
+
+// The multiple table's angular closure K(ρ, μ) (FORMAT.md, `angular_closure`; docs/LIGHTING.md):
+// values on `nodes` density scales log2 ρ = log2RhoFirst + i·log2RhoStep and `bins` uniform bins
+// of μ = ω_out·l over [−1, 1], stored node by node (index i·bins + j). K is linear in log2 ρ
+// between the nodes and in μ between the bins' centres, and held beyond the first and last.
+// These three functions are that interpolation; the caller fetches the four values.
+
+// The continuous grid position (s, m) of density scale ρ (dimensionless) and exit cosine μ,
+// clamped to the grid: s in [0, nodes − 1], m in [0, bins − 1].
+CLOUDLUT_FN vec2 angularClosurePosition(float rho, float mu, float log2RhoFirst, float log2RhoStep, float nodes,
+                                        float bins) {
+  float s = clamp((log2(max(rho, 1e-30f)) - log2RhoFirst) / log2RhoStep, 0.0f, nodes - 1.0f);
+  float m = clamp((mu + 1.0f) * 0.5f * bins - 0.5f, 0.0f, bins - 1.0f);
+  return vec2(s, m);
+}
+
+// The cell around grid position p: its first node and bin (s0, m0), as whole numbers, such that
+// s0 + 1 and m0 + 1 are in the grid too (when the grid has two of them).
+CLOUDLUT_FN vec2 angularClosureCell(vec2 p, float nodes, float bins) {
+  return vec2(min(floor(p.x), max(nodes - 2.0f, 0.0f)), min(floor(p.y), max(bins - 2.0f, 0.0f)));
+}
+
+// Bilinear K in the cell: k = (K(s0, m0), K(s0, m1), K(s1, m0), K(s1, m1)), m1 = min(m0 + 1,
+// bins − 1), s1 likewise; p the grid position, cell its angularClosureCell.
+CLOUDLUT_FN float angularClosureBlend(vec4 k, vec2 p, vec2 cell) {
+  vec2 f = p - cell;
+  return mix(mix(k.x, k.y, f.y), mix(k.z, k.w, f.y), f.x);
+}

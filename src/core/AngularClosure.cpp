@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/Glsl.h"
+
 namespace cloudlut {
 
 namespace {
@@ -69,16 +71,13 @@ std::optional<AngularClosure> angularClosureFromJson(const nlohmann::json& recor
 
 float angularClosureAt(const AngularClosure& c, float rho, float mu) {
   const int nodes = c.densityNodes, bins = c.muBins;
-  const float s = std::clamp((std::log2(std::max(rho, 1e-30f)) - c.log2RhoFirst) / c.log2RhoStep, 0.0f,
-                             static_cast<float>(nodes - 1));
-  const float m = std::clamp((mu + 1.0f) * 0.5f * static_cast<float>(bins) - 0.5f, 0.0f, static_cast<float>(bins - 1));
-  const int s0 = std::min(static_cast<int>(s), std::max(nodes - 2, 0)), m0 = std::min(static_cast<int>(m), std::max(bins - 2, 0));
+  const float n = static_cast<float>(nodes), b = static_cast<float>(bins);
+  const glm::vec2 p = glsl::angularClosurePosition(rho, mu, c.log2RhoFirst, c.log2RhoStep, n, b);
+  const glm::vec2 cell = glsl::angularClosureCell(p, n, b);
+  const int s0 = static_cast<int>(cell.x), m0 = static_cast<int>(cell.y);
   const int s1 = std::min(s0 + 1, nodes - 1), m1 = std::min(m0 + 1, bins - 1);
-  const float fs = s - static_cast<float>(s0), fm = m - static_cast<float>(m0);
-  const auto at = [&](int i, int b) { return c.values[static_cast<std::size_t>(i * bins + b)]; };
-  const float a = at(s0, m0) + (at(s0, m1) - at(s0, m0)) * fm;
-  const float b = at(s1, m0) + (at(s1, m1) - at(s1, m0)) * fm;
-  return a + (b - a) * fs;
+  const auto at = [&](int i, int j) { return c.values[static_cast<std::size_t>(i * bins + j)]; };
+  return glsl::angularClosureBlend(glm::vec4(at(s0, m0), at(s0, m1), at(s1, m0), at(s1, m1)), p, cell);
 }
 
 }  // namespace cloudlut

@@ -33,8 +33,9 @@ nlohmann::json angularClosureToJson(const AngularClosure& closure);
 std::optional<AngularClosure> angularClosureFromJson(const nlohmann::json& record, std::string& problem);
 
 // K at density scale ρ and exit direction μ ∈ [−1, 1]: linear in log2 ρ between the nodes and in μ
-// between the bins' centres, held beyond the first and last (particle.frag.glsl's
-// angularClosure(), the same arithmetic).
+// between the bins' centres, held beyond the first and last: the shared GLSL's
+// angularClosurePosition, angularClosureCell and angularClosureBlend (cloudlut_shading.glsl),
+// which the particle shader's angularClosure() calls too.
 float angularClosureAt(const AngularClosure& closure, float rho, float mu);
 
 }  // namespace cloudlut

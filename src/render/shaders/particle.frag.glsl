@@ -53,18 +53,17 @@ uniform vec4 uAngularClosureRho;
 uniform ivec3 uAngularClosureDims;
 uniform float uAngularClosure[256];
 
-// K at the particle's density scale ρ and exit direction μ (dimensionless): linear in log2 ρ
-// between the nodes and in μ between the bins' centres, held at the ends.
+// K at the particle's density scale ρ and exit direction μ (dimensionless): the shared
+// interpolation (cloudlut_shading.glsl, angularClosurePosition …) of the uniform's values.
 float angularClosure(float rho, float mu) {
   int nodes = uAngularClosureDims.x, bins = uAngularClosureDims.y;
-  float s = clamp((log2(max(rho, 1e-30)) - uAngularClosureRho.x) / uAngularClosureRho.y, 0.0, float(nodes - 1));
-  float m = clamp((mu + 1.0) * 0.5 * float(bins) - 0.5, 0.0, float(bins - 1));
-  int s0 = min(int(s), max(nodes - 2, 0)), m0 = min(int(m), max(bins - 2, 0));
+  vec2 p = angularClosurePosition(rho, mu, uAngularClosureRho.x, uAngularClosureRho.y, float(nodes), float(bins));
+  vec2 cell = angularClosureCell(p, float(nodes), float(bins));
+  int s0 = int(cell.x), m0 = int(cell.y);
   int s1 = min(s0 + 1, nodes - 1), m1 = min(m0 + 1, bins - 1);
-  float fs = s - float(s0), fm = m - float(m0);
-  float a = mix(uAngularClosure[s0 * bins + m0], uAngularClosure[s0 * bins + m1], fm);
-  float b = mix(uAngularClosure[s1 * bins + m0], uAngularClosure[s1 * bins + m1], fm);
-  return mix(a, b, fs);
+  vec4 k = vec4(uAngularClosure[s0 * bins + m0], uAngularClosure[s0 * bins + m1], uAngularClosure[s1 * bins + m0],
+                uAngularClosure[s1 * bins + m1]);
+  return angularClosureBlend(k, p, cell);
 }
 
 layout(r32ui, binding = 0) uniform coherent uimage2D uHeads;  // volume_fragments.glsl lists
