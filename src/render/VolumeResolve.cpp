@@ -12,8 +12,11 @@ namespace cloudlut::render {
 
 namespace {
 
-constexpr GLuint kPoolBinding = 2, kCutBinding = 3, kLongListBinding = 4;
-constexpr unsigned kLongGroup = 64;  // volume_resolve.comp.glsl: local_size_x
+constexpr GLuint kPoolBinding = 2, kCutBinding = 3, kPixelListsBinding = 4;
+constexpr unsigned kResolveGroup = 64;  // the resolves' local_size_x
+// PixelLists (volume_fragments.glsl): touched count, long count, capacity, unused; then
+// 2 × capacity pixel words.
+constexpr std::size_t kPixelListHeaderWords = 4;
 constexpr GLuint kHeadsUnit = 0, kColourUnit = 1;
 // The pool (volume_fragments.glsl, block Fragments): count, capacity, overflow, truncated pixels.
 constexpr std::size_t kCounterWords = 4;
@@ -59,10 +62,10 @@ VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long 
 }
 
 VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
-    : gl_(gl), budget_(budget), pool_(gl), cut_(gl), longLists_(gl) {
+    : gl_(gl), budget_(budget), pool_(gl), cut_(gl), pixelLists_(gl) {
   shortProgram_ = linkComputeProgram(
       gl, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_short.comp.glsl"},
-      fragmentDefines() + glslDefine("GROUP_SIDE", kGroupSide));
+      fragmentDefines());
   longProgram_ = linkComputeProgram(
       gl, {"volume_fragments.glsl", "volume_pieces.glsl", "loop_budget.glsl", "volume_resolve.comp.glsl"},
       fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel));
@@ -83,8 +86,8 @@ VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel
                   "volume blending of a " + std::to_string(tiling_.tileWidth) + "x" + std::to_string(tiling_.tileHeight) +
                       " tile with " + std::to_string(fragmentsPerPixel) + " fragments per pixel");
   pool_.ensure(tiling_.poolBytes);
-  // One word per pixel of a tile (a seventh of a pool that holds one node per pixel).
-  longLists_.ensure(4 * (1 + static_cast<std::size_t>(tiling_.tileWidth) * static_cast<std::size_t>(tiling_.tileHeight)));
+  // Two words per pixel of a tile (two sevenths of a pool that holds one node per pixel).
+  pixelLists_.ensure(4 * (kPixelListHeaderWords + 2 * tilePixels()));
   shortList_ = shortList;
   if (!heads_ || width != width_ || height != height_) {
     if (heads_) gl_.DeleteTextures(1, &heads_);
@@ -122,6 +125,9 @@ void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawT
     pending.pop_back();
     const GLuint counters[kCounterWords] = {0, static_cast<GLuint>(capacity), 0, 0};
     pool_.write(0, sizeof counters, counters);
+    const GLuint listHeader[kPixelListHeaderWords] = {0, 0, static_cast<GLuint>(tilePixels()), 0};
+    pixelLists_.write(0, sizeof listHeader, listHeader);
+    pixelLists_.bind(kPixelListsBinding);
     fullBarrier(gl_);
     gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     pool_.bind(kPoolBinding);
@@ -151,7 +157,7 @@ void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawT
       continue;
     }
     const Stopwatch clock;
-    resolveTile(colourTexture, r.x0, r.y0, r.x1, r.y1);
+    resolveTile(colourTexture);
     resolveSeconds_ += clock.seconds();
     GLuint c[kCounterWords] = {0, 0, 0, 0};
     pool_.read(0, sizeof c, c);
@@ -165,6 +171,8 @@ void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawT
 void VolumeResolve::bindUnused() {
   if (pool_.bytes() == 0) pool_.ensure(64);
   pool_.bind(kPoolBinding);
+  if (pixelLists_.bytes() == 0) pixelLists_.ensure(64);
+  pixelLists_.bind(kPixelListsBinding);
   if (!unusedHeads_) {
     gl_.GenTextures(1, &unusedHeads_);
     gl_.BindTexture(GL_TEXTURE_2D, unusedHeads_);
@@ -173,33 +181,35 @@ void VolumeResolve::bindUnused() {
   gl_.BindImageTexture(kHeadsUnit, unusedHeads_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
 }
 
-void VolumeResolve::resolveTile(GLuint colourTexture, int x0, int y0, int x1, int y1) {
+std::size_t VolumeResolve::tilePixels() const {
+  return static_cast<std::size_t>(tiling_.tileWidth) * static_cast<std::size_t>(tiling_.tileHeight);
+}
+
+void VolumeResolve::resolveTile(GLuint colourTexture) {
   fullBarrier(gl_);
   const GLuint zero = 0;
   cut_.assign(&zero, sizeof zero);
   cut_.bind(kCutBinding);
-  longLists_.write(0, sizeof zero, &zero);
-  longLists_.bind(kLongListBinding);
+  pixelLists_.bind(kPixelListsBinding);
   pool_.bind(kPoolBinding);
   gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
   gl_.BindImageTexture(kColourUnit, colourTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  GLuint counts[2] = {0, 0};  // pixels with a list, pixels with a long list
+  pixelLists_.read(0, sizeof counts, counts);
 
-  // Every pixel of the tile: the short lists resolved, the long ones queued.
-  gl_.UseProgram(shortProgram_.id());
-  gl_.Uniform2i(shortProgram_.uniform("uOrigin"), x0, y0);
-  gl_.Uniform2i(shortProgram_.uniform("uEnd"), x1, y1);
-  gl_.Uniform1i(shortProgram_.uniform("uShortList"), shortList_);
-  gl_.DispatchCompute(groupsFor(static_cast<std::size_t>(x1 - x0), kGroupSide),
-                      groupsFor(static_cast<std::size_t>(y1 - y0), kGroupSide), 1);
-  fullBarrier(gl_);
-  GLuint longCount = 0;
-  longLists_.read(0, sizeof longCount, &longCount);
-
+  // The pixels the particle pass listed: the short lists resolved, the long ones queued.
+  if (counts[0] > 0) {
+    gl_.UseProgram(shortProgram_.id());
+    gl_.Uniform1i(shortProgram_.uniform("uShortList"), shortList_);
+    gl_.DispatchCompute(groupsFor(counts[0], kResolveGroup), 1, 1);
+    fullBarrier(gl_);
+    pixelLists_.read(0, sizeof counts, counts);
+  }
   // The queued pixels.
-  if (longCount > 0) {
+  if (counts[1] > 0) {
     gl_.UseProgram(longProgram_.id());
     gl_.Uniform1i(longProgram_.uniform("uProbePasses"), kLoopProbePasses);
-    gl_.DispatchCompute(groupsFor(longCount, kLongGroup), 1, 1);
+    gl_.DispatchCompute(groupsFor(counts[1], kResolveGroup), 1, 1);
     fullBarrier(gl_);
   }
   gl_.Finish();
@@ -207,7 +217,7 @@ void VolumeResolve::resolveTile(GLuint colourTexture, int x0, int y0, int x1, in
   GLuint cut = 0;
   cut_.read(0, sizeof cut, &cut);
   counts_.cutPixels += cut;
-  counts_.longLists += longCount;
+  counts_.longLists += counts[1];
 }
 
 }  // namespace cloudlut::render

@@ -9,14 +9,15 @@
 // fragments that found no room in the pool (alpha-blended by the particle pass, in arrival order)
 // are composited behind them.
 //
+// The particle pass lists the pixels whose list it starts, and the resolves visit only those.
 // Two programs: lists of at most RenderSettings::volumeShortList segments (most pixels) are
 // resolved in one sweep that finds each next entry or exit by walking the list again
 // (shaders/volume_resolve_short.comp.glsl, no arrays); the longer ones are queued and resolved by
 // sorting them in chunks of kMaxSegmentsPerPixel, each chunk composited exactly and the chunks
 // front to back (shaders/volume_resolve.comp.glsl). llvmpipe keeps a shader's arrays in memory
 // and pays for them in every invocation of the program, whether it touches them or not: one
-// program for every pixel made the resolve take 150 of a single particle's 210 ms per frame at
-// 1280×720.
+// program over every pixel of the tile made the resolve take 150 of a single particle's 210 ms
+// per frame at 1280×720.
 //
 // Tiles: the node pool of one shader storage block holds the lists of one screen tile at a time.
 // The buffer is cut into bands (or, when one row does not fit, runs of pixels) of at most
@@ -108,15 +109,13 @@ class VolumeResolve {
   // Seconds the resolves of the last run took (glFinish each).
   double resolveSeconds() const { return resolveSeconds_; }
 
-  static constexpr int kGroupSide = 8;  // work groups of kGroupSide² pixels
-
  private:
   const GlFunctions& gl_;
   const StorageBudget& budget_;
   GlProgram shortProgram_, longProgram_;
   StorageBuffer pool_;
   StorageBuffer cut_;        // the resolves' count of pixels the GL cut short (binding 3)
-  StorageBuffer longLists_;  // the pixels left to the long resolve: count, packed x | y << 16 (binding 4)
+  StorageBuffer pixelLists_;  // the pixels with a list and those with a long one (binding 4, volume_fragments.glsl)
   int shortList_ = kShortListCapacity;
   GLuint heads_ = 0, unusedHeads_ = 0;
   int width_ = 0, height_ = 0;
@@ -124,7 +123,8 @@ class VolumeResolve {
   Counts counts_;
   double resolveSeconds_ = 0;
 
-  void resolveTile(GLuint colourTexture, int x0, int y0, int x1, int y1);
+  std::size_t tilePixels() const;  // of the plan's tile: the most any drawn tile has
+  void resolveTile(GLuint colourTexture);
 };
 
 }  // namespace cloudlut::render

@@ -201,7 +201,10 @@ void main() {
   if (uVolume != 0) {
     uint node = atomicAdd(fragCount, 1u);
     if (node < fragCapacity) {
-      storeFragment(node, tNear, tExit, tau, radiance, imageAtomicExchange(uHeads, ivec2(gl_FragCoord.xy), node));
+      uint next = imageAtomicExchange(uHeads, ivec2(gl_FragCoord.xy), node);
+      storeFragment(node, tNear, tExit, tau, radiance, next);
+      if (next == FRAGMENT_LIST_END && touchedCount < pixelCapacity)  // the pixel's first: list it
+        pixels[atomicAdd(touchedCount, 1u)] = packPixel(ivec2(gl_FragCoord.xy));
       oColor = vec4(0.0, 0.0, 0.0, 1.0);  // stored: composited by volume_resolve.comp.glsl
     } else {
       atomicAdd(fragOverflow, 1u);  // no room: alpha-blended into the colour image (fallback)

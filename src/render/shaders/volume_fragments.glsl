@@ -3,6 +3,8 @@
 // (volume_resolve.comp.glsl) composites the lists. Preceded by the defines of
 // render/VolumeResolve.cpp, which sizes the node pool: FRAGMENT_NODE_WORDS (words per node).
 //
+// The resolves visit only the pixels in PixelLists (below), not the whole tile.
+//
 // Node layout (FRAGMENT_NODE_WORDS = 7 words): entry and exit distance along the view ray (world
 // units), optical depth τ, radiance r, g, b scattered toward the camera (premultiplied), index of
 // the next node of the pixel's list (FRAGMENT_LIST_END ends it). The heads are an r32ui image.
@@ -42,3 +44,17 @@ vec3 fragmentRadiance(uint node) {
   return vec3(uintBitsToFloat(nodes[base + 3u]), uintBitsToFloat(nodes[base + 4u]), uintBitsToFloat(nodes[base + 5u]));
 }
 uint fragmentNext(uint node) { return nodes[node * uint(FRAGMENT_NODE_WORDS) + 6u]; }
+
+// Two lists of pixels of the tile, packed x | y << 16: the pixels whose list the particle pass
+// started (pixels[0 … touchedCount), one entry per pixel with a list), and those the short
+// resolve leaves to the long one (pixels[pixelCapacity …], longCount of them). pixelCapacity is
+// the tile's pixel count, set with the counters before each draw.
+layout(std430, binding = 4) buffer PixelLists {
+  uint touchedCount;
+  uint longCount;
+  uint pixelCapacity;
+  uint pixelListsUnused;
+  uint pixels[];
+};
+uint packPixel(ivec2 px) { return uint(px.x) | (uint(px.y) << 16); }
+ivec2 unpackPixel(uint word) { return ivec2(int(word & 0xffffu), int(word >> 16)); }

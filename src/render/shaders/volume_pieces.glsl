@@ -53,12 +53,3 @@ void addPiece(inout vec3 color, inout float transmittance, float kappa, vec3 kap
   color += transmittance * max(kappaColor, vec3(0.0f)) * d * expRatio(x);  // (Σκc/κ)(1 − e^{−κd})
   transmittance *= exp(-x);
 }
-
-// The pixels whose lists are longer than the short resolve takes (volume_resolve_short.comp.glsl
-// appends them, volume_resolve.comp.glsl resolves them), packed x | y << 16.
-layout(std430, binding = 4) buffer LongLists {
-  uint longCount;
-  uint longPixels[];
-};
-uint packPixel(ivec2 px) { return uint(px.x) | (uint(px.y) << 16); }
-ivec2 unpackPixel(uint word) { return ivec2(int(word & 0xffffu), int(word >> 16)); }

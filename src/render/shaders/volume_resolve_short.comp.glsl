@@ -1,5 +1,5 @@
 // volume_resolve_short.comp.glsl — volume-aware blending (seed §5.5, eqs. 15–17) of the pixels
-// whose lists hold at most uShortList segments: most pixels of a frame (none, one, or a few
+// whose lists hold at most uShortList segments: most pixels of a frame (one, or a few
 // overlapping particles). The same pieces as volume_resolve.comp.glsl (volume_pieces.glsl): the
 // segments are cut at every entry and exit, the extinctions and extinction-weighted sources of
 // the segments present in a piece add, the pieces are composited front to back, then the
@@ -11,17 +11,16 @@
 // first; then the segment's key, compareKeys), and keeps the running sums of κ and κ·C as the
 // events pass. So the result depends on the set of segments only, not on the order the particle
 // pass pushed them; a list of L segments costs 2L walks of it. A longer list is appended to
-// LongLists for volume_resolve.comp.glsl.
+// PixelLists for volume_resolve.comp.glsl.
 //
-// Preceded by volume_fragments.glsl, volume_pieces.glsl and the define of render/VolumeResolve.cpp
-// GROUP_SIDE (work groups of GROUP_SIDE² pixels).
+// One invocation per pixel that the particle pass listed (PixelLists: the pixels with a list;
+// the others keep their colour), in work groups of 64. Preceded by volume_fragments.glsl and
+// volume_pieces.glsl.
 
-layout(local_size_x = GROUP_SIDE, local_size_y = GROUP_SIDE) in;
+layout(local_size_x = 64) in;
 
 layout(r32ui, binding = 0) uniform readonly uimage2D uHeads;
 layout(rgba32f, binding = 1) uniform image2D uColor;  // in: overflow (rgb, T); out: the result
-uniform ivec2 uOrigin;  // the tile's first pixel (render/VolumeResolve.h: tiles)
-uniform ivec2 uEnd;     // one past its last pixel
 uniform int uShortList;  // the longest list resolved here (RenderSettings::volumeShortList)
 
 // An event: the entry (isEntry) or the exit at distance t of the segment (a, node).
@@ -40,14 +39,13 @@ int compareEvents(Event x, Event y) {
 }
 
 void main() {
-  ivec2 px = uOrigin + ivec2(gl_GlobalInvocationID.xy);
-  if (px.x >= uEnd.x || px.y >= uEnd.y) return;
+  if (gl_GlobalInvocationID.x >= touchedCount) return;
+  ivec2 px = unpackPixel(pixels[gl_GlobalInvocationID.x]);
   uint head = imageLoad(uHeads, px).x;
-  if (head == FRAGMENT_LIST_END) return;  // no segment: the overflow colour is the result
   int count = 0;
   for (uint node = head; node != FRAGMENT_LIST_END && count <= uShortList; node = fragmentNext(node)) ++count;
   if (count > uShortList) {
-    longPixels[atomicAdd(longCount, 1u)] = packPixel(px);
+    pixels[pixelCapacity + atomicAdd(longCount, 1u)] = packPixel(px);
     return;
   }
 
