@@ -48,8 +48,8 @@ TEST_CASE("angular closure: the homogeneous sphere's own tables need none", "[cl
   const bake::ScatteringResult& sc = test::defaultScattering(0);
   REQUIRE(sc.multiple);
   const Table4D od = depthTable(DensityModel::Sphere);
-  // ρ = 1/2 and 2. (At ρ = 8 the forward bin holds a few per cent of the power, and the sanitizer
-  // build's photons once put it 3–5 standard errors from the release build's, docs/LIGHTING.md.)
+  // ρ = 1/2 and 2. (At ρ = 8 the forward bin holds a few per cent of the power, and a stream of
+  // photons once put it 3–5 standard errors from the others, docs/LIGHTING.md.)
   bake::AngularClosureSettings s = smallSettings();
   s.densityNodes = 2;
   s.photonsPerDirection = 12000;

@@ -12,6 +12,7 @@
 
 #include "support/CliRunner.h"
 #include "core/Glsl.h"
+#include "core/PhaseSampling.h"
 #include "reference/SphereMonteCarlo.h"
 
 using namespace cloudlut;
@@ -140,6 +141,28 @@ TEST_CASE("MC phase sampling reproduces the phase functions' mean cosine", "[ref
   double ms = 0.0;
   for (int i = 0; i < n; ++i) ms += samplePhaseCosine(jd, rng);
   CHECK(ms / n == Approx(m / q).margin(0.005));
+}
+
+TEST_CASE("MC scattered directions: the azimuth is drawn before the cosine, on every compiler", "[reference]") {
+  // sampleScatteredDirection draws the azimuth's uniform number, then the cosine; the same draws
+  // written out by hand must give the same direction bit for bit (as one call with both draws
+  // as arguments, the order was the compiler's). And the sampled cosine against d must be the
+  // phase function's: its mean for Henyey–Greenstein is g.
+  const Phase hg{PhaseKind::HenyeyGreenstein, 0.7f};
+  McRng a(4, 5, 6), b(4, 5, 6);
+  glm::dvec3 d = glm::normalize(glm::dvec3(0.3, -0.5, 0.8));
+  double meanCosine = 0.0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const glm::dvec3 next = sampleScatteredDirection(d, hg, a);
+    const double azimuth = b.next();
+    const double mu = samplePhaseCosine(hg, b);
+    const glm::dvec3 byHand = rotateAbout(d, mu, azimuth);
+    if (i < 1000) REQUIRE((next.x == byHand.x && next.y == byHand.y && next.z == byHand.z));
+    meanCosine += glm::dot(next, d);
+    d = next;
+  }
+  CHECK(meanCosine / n == Approx(0.7).margin(0.005));
 }
 
 TEST_CASE("MC estimates do not depend on the number of threads", "[reference]") {

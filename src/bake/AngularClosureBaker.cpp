@@ -70,7 +70,7 @@ void tracePhotons(Tally& t, const ReferenceParticle& particle, double sigma, con
       if (glm::dot(p, p) >= 1.0) break;
       if (rng.next() >= static_cast<double>(particle.density(glm::vec3(p)))) continue;  // null collision
       if (++order > maxOrder) break;
-      d = rotateAbout(d, samplePhaseCosine(order == 1 ? first : later, rng), rng.next());
+      d = sampleScatteredDirection(d, order == 1 ? first : later, rng);
     }
     if (order < 2 || order > maxOrder) continue;
     const int b = muBin(glm::dot(d, l), bins);

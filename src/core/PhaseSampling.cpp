@@ -61,6 +61,12 @@ double samplePhaseCosine(const Phase& phase, McRng& rng) {
   return 1.0 - 2.0 * rng.next();
 }
 
+glm::dvec3 sampleScatteredDirection(const glm::dvec3& d, const Phase& phase, McRng& rng) {
+  const double azimuth = rng.next();
+  const double mu = samplePhaseCosine(phase, rng);
+  return rotateAbout(d, mu, azimuth);
+}
+
 glm::dvec3 rotateAbout(const glm::dvec3& d, double mu, double u) {
   const glm::dvec3 a = std::abs(d.x) < 0.7 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   const glm::dvec3 t = glm::normalize(glm::cross(d, a));

@@ -28,4 +28,11 @@ double samplePhaseCosine(const Phase& phase, McRng& rng);
 // A unit vector at angle acos(mu) from the unit vector d, at azimuth 2π·u about it.
 glm::dvec3 rotateAbout(const glm::dvec3& d, double mu, double u);
 
+// The direction after scattering from direction d by the phase function: the azimuth's uniform
+// number drawn first, then the cosine (samplePhaseCosine). Written out in that order because a
+// call's arguments are evaluated in an order the compiler chooses: as one call
+// rotateAbout(d, samplePhaseCosine(phase, rng), rng.next()), GCC drew the azimuth first and
+// Clang the cosine, so the two builds traced different photons from the same seed.
+glm::dvec3 sampleScatteredDirection(const glm::dvec3& d, const Phase& phase, McRng& rng);
+
 }  // namespace cloudlut

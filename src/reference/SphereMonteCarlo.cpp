@@ -78,7 +78,7 @@ void tracePath(const SphereMcQuery& q, const glm::dvec3& S, const glm::dvec3& v,
     add(k, misA * w * phaseAt(st.first, glm::dot(l, d)) * std::exp(-sigma * distanceToBoundary(x, l)));
     // Technique B for order k + 1.
     if (k < lastVertex) {
-      const glm::dvec3 dB = rotateAbout(l, samplePhaseCosine(st.first, rng), rng.next());
+      const glm::dvec3 dB = sampleScatteredDirection(l, st.first, rng);
       const double pmB = phaseAt(st.later, glm::dot(d, dB));
       const double p1B = phaseAt(st.first, glm::dot(l, dB));
       double wB = w;
@@ -94,7 +94,7 @@ void tracePath(const SphereMcQuery& q, const glm::dvec3& S, const glm::dvec3& v,
     }
     // Technique A: continue backward; the light arriving here came from direction d' with
     // cos(d, d') drawn exactly from the later phase function.
-    const glm::dvec3 dn = rotateAbout(d, samplePhaseCosine(st.later, rng), rng.next());
+    const glm::dvec3 dn = sampleScatteredDirection(d, st.later, rng);
     const double pmA = phaseAt(st.later, glm::dot(d, dn));
     const double p1A = phaseAt(st.first, glm::dot(l, dn));
     misA = pmA + p1A > 0.0 ? pmA / (pmA + p1A) : 1.0;
@@ -176,7 +176,7 @@ ForwardPhoton traceForwardPhoton(double sigma, const Phase& first, const Phase& 
   out.unscatteredWeight = 1.0 - pInt;
   out.weight = pInt;  // forced first collision
   x += (std::min(-std::log1p(-rng.next() * pInt) / sigma, chord)) * d;
-  d = rotateAbout(d, samplePhaseCosine(first, rng), rng.next());
+  d = sampleScatteredDirection(d, first, rng);
   int k = 1;
   for (;;) {
     const double dist = distanceToBoundary(x, d);
@@ -187,7 +187,7 @@ ForwardPhoton traceForwardPhoton(double sigma, const Phase& first, const Phase& 
     }
     x += t * d;
     ++k;
-    d = rotateAbout(d, samplePhaseCosine(later, rng), rng.next());
+    d = sampleScatteredDirection(d, later, rng);
     if (k > 50000000) break;
   }
   out.order = k;
