@@ -150,7 +150,11 @@ AtmosphereRadiance AtmosphereReference::trace(const glm::dvec3& position, const 
           const double cosSun = glm::dot(normal, sun);
           if (cosSun > 0.0 && scored) radiance += weight * albedo_[c] / kPi * cosSun * sunTransmittance(p, sun, 400)[c];
           weight *= albedo_[c];
-          d = around(normal, std::sqrt(U(rng)), 2.0 * kPi * U(rng));
+          // cosine-weighted: the azimuth drawn first, then the cosine, as two statements (as
+          // arguments of one call their order would be the compiler's)
+          const double azimuth = 2.0 * kPi * U(rng);
+          const double cosine = std::sqrt(U(rng));
+          d = around(normal, cosine, azimuth);
         } else {
           p = p + t * d;
           const double h = glm::length(p) - bottom_;
