@@ -68,6 +68,23 @@ std::size_t mismatches(const std::vector<float>& a, const std::vector<float>& b)
   return n;
 }
 
+// The largest differences of `image` from `reference`: in opacity (absolute) and in colour
+// (relative to the reference, floored at 10⁻³).
+struct WorstDifference {
+  double alpha = 0, colour = 0;
+};
+WorstDifference worstDifference(const Image& image, const Image& reference) {
+  WorstDifference w;
+  for (std::size_t i = 0; i < image.rgba.size(); ++i) {
+    const double d = std::abs(double(image.rgba[i]) - double(reference.rgba[i]));
+    if (i % 4 == 3)
+      w.alpha = std::max(w.alpha, d);
+    else
+      w.colour = std::max(w.colour, d / std::max(1e-3, double(reference.rgba[i])));
+  }
+  return w;
+}
+
 }  // namespace
 
 TEST_CASE("volume order: more than 32 overlapping segments resolve bit-identically in any submission order",
@@ -123,20 +140,13 @@ TEST_CASE("volume order: short lists resolve without arrays, as the chunked reso
   chunked.volumeShortList = 0;
   RenderStats chunkedStats;
   const Image reference = renderer.render(ps, chunked, &chunkedStats);
-  double worstColour = 0, worstAlpha = 0;
-  for (std::size_t i = 0; i < image.rgba.size(); ++i) {
-    const double d = std::abs(double(image.rgba[i]) - double(reference.rgba[i]));
-    if (i % 4 == 3)
-      worstAlpha = std::max(worstAlpha, d);
-    else
-      worstColour = std::max(worstColour, d / std::max(1e-3, double(reference.rgba[i])));
-  }
+  const WorstDifference worst = worstDifference(image, reference);
   std::printf("[volume order] 5 overlapping spheres: %zu fragments, %zu pixels over %d segments; against the "
               "chunked resolve opacity %.2e, colour (relative) %.2e\n",
-              stats.fragments, stats.longListPixels, kShortListCapacity, worstAlpha, worstColour);
+              stats.fragments, stats.longListPixels, kShortListCapacity, worst.alpha, worst.colour);
   CHECK(chunkedStats.longListPixels > stats.longListPixels);
-  CHECK(worstAlpha < 1e-5);
-  CHECK(worstColour < 1e-4);
+  CHECK(worst.alpha < 1e-5);
+  CHECK(worst.colour < 1e-4);
 
   std::vector<Particle> reversed(ps.rbegin(), ps.rend());
   const std::vector<Particle> shuffled = {ps[2], ps[4], ps[0], ps[3], ps[1]};
@@ -169,19 +179,12 @@ TEST_CASE("volume order: a stack of disjoint particles composites front to back 
     REQUIRE(stats.fragmentOverflow == 0);
     if (count == 60) REQUIRE(stats.truncatedPixels > 20);
     if (count == 4) REQUIRE(stats.longListPixels == 0);
-    double worstColour = 0, worstAlpha = 0;
-    for (std::size_t i = 0; i < volume.rgba.size(); ++i) {
-      const double d = std::abs(double(volume.rgba[i]) - double(alpha.rgba[i]));
-      if (i % 4 == 3)
-        worstAlpha = std::max(worstAlpha, d);
-      else
-        worstColour = std::max(worstColour, d / std::max(1e-3, double(alpha.rgba[i])));
-    }
+    const WorstDifference worst = worstDifference(volume, alpha);
     std::printf("[volume order] %d disjoint spheres, %zu pixels over 32 segments: max |volume - alpha| opacity "
                 "%.2e, colour (relative) %.2e\n",
-                count, stats.truncatedPixels, worstAlpha, worstColour);
-    CHECK(worstAlpha < 1e-4);
-    CHECK(worstColour < 1e-3);
+                count, stats.truncatedPixels, worst.alpha, worst.colour);
+    CHECK(worst.alpha < 1e-4);
+    CHECK(worst.colour < 1e-3);
   }
 }
 
