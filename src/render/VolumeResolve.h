@@ -85,14 +85,15 @@ class VolumeResolve {
   // Lists of up to shortList segments go to the array-free resolve.
   VolumeTiling prepare(int width, int height, int fragmentsPerPixel, long double budgetBytes, int shortList);
   // For each tile of the prepared tiling: empties the pool, binds it and the heads for the
-  // particle pass (pool at binding 2, heads at image unit 0), scissors to the tile, calls
-  // drawTile, then composites the tile's lists into the colour texture (RGBA32F, as prepared):
-  // in, the fragments that found no room (radiance, transmittance); out, the result. A tile
-  // whose fragments overflow the pool is undone and drawn again as two halves (down to one
-  // pixel), so the plan adapts to the fragment load and stays exact. counts() then holds the
-  // sums over the tiles.
+  // particle pass (pool at binding 2, pixel lists at binding 4, heads at image unit 0), scissors
+  // to the tile, calls drawTile, then composites the tile's lists into the colour texture
+  // (RGBA32F, as prepared): in, the fragments that found no room (radiance, transmittance); out,
+  // the result. A tile whose fragments overflow the pool is undone and drawn again as two halves
+  // (down to one pixel), so the plan adapts to the fragment load and stays exact. counts() then
+  // holds the sums over the tiles.
   void run(GLuint colourTexture, const std::function<void()>& drawTile);
-  // Binds a small pool and a 1×1 head image, for a particle pass that stores no fragments.
+  // Binds a small pool, small pixel lists and a 1×1 head image, for a particle pass that stores no
+  // fragments.
   void bindUnused();
 
   struct Counts {

@@ -10,9 +10,10 @@
 // segments reduce to alpha blending; the transmittance is exactly e^{−Σ τ_i} in any case.
 //
 // One invocation per pixel that volume_resolve_short.comp.glsl left in PixelLists (more than
-// RenderSettings::volumeShortList segments), in work groups of 64. The arrays below are the invocation's own: a GL
-// that keeps them in memory (llvmpipe) pays for them in every invocation of a program that
-// declares them, used or not, which is why the short lists are resolved by another program.
+// RenderSettings::volumeShortList segments), in work groups of 64. The arrays below are the
+// invocation's own: a GL that keeps them in memory (llvmpipe) pays for them in every invocation
+// of a program that declares them, used or not, which is why the short lists are resolved by
+// another program.
 //
 // Preceded by volume_fragments.glsl, volume_pieces.glsl, loop_budget.glsl and the defines of
 // render/VolumeResolve.cpp: MAX_SEGMENTS (kMaxSegmentsPerPixel).
