@@ -67,6 +67,7 @@ int runRender(int argc, char** argv) {
     ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel", cxxopts::value<int>()->default_value("16"))
     ("volume-pool-mib", "volume blending: node pool budget of one screen tile in MiB (capped by the GL's storage block limit)", cxxopts::value<double>()->default_value("128"))
     ("no-occlusion", "constant sunlight (no light-space occlusion, no sun volume shadows)")
+    ("box-proxies", "rasterise every particle as its bounding box, not the polygon around its outline seen from afar (the same image, more fragments: for timing)")
     ("lighting", "lighting model: cloud (sunlight per shading point, multiple scattering of the cloud around each point, "
      "ambient from the sky above and the ground below through the cloud above and below each point) or seed (the "
      "seed paper's per-particle model)", cxxopts::value<std::string>()->default_value("cloud"))
@@ -126,6 +127,7 @@ int runRender(int argc, char** argv) {
     throw UsageError("--volume-pool-mib: expected a positive number of MiB up to 1048576");
   settings.volumePoolBytes = static_cast<long double>(poolMiB) * 1048576.0L;
   settings.occlusion = args.count("no-occlusion") == 0;
+  settings.outlinePolygons = args.count("box-proxies") == 0;
   settings.lighting = render::parseLighting(args["lighting"].as<std::string>());
   settings.sunlight = args.count("sunlight") ? render::parseSunlight(args["sunlight"].as<std::string>())
                                              : render::defaultSunlight(settings.lighting);

@@ -18,7 +18,7 @@ const std::vector<std::string> kFragmentFiles = {
     "particle_common.glsl", "volume_fragments.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
     "cascade_columns.glsl", "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
     "cloudlut_detail_noise.glsl", "particle_detail.glsl", "particle.frag.glsl"};
-constexpr GLsizei kBoxVertices = 36;  // 6 faces × 2 triangles (particle.vert.glsl)
+constexpr GLsizei kProxyVertices = 36;  // the box's 6 faces × 2 triangles, or the polygon's fan (particle.vert.glsl)
 constexpr int kSunVolumeUnit = 3;      // texture unit after the three tables (ShadingTables)
 constexpr int kZenithVolumeUnit = 4;
 
@@ -53,6 +53,8 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   const float nearPlane = farPlane * 1e-6f;
   uniforms.set("uViewProjection", frame.projectionMatrix(nearPlane, farPlane) * frame.viewMatrix());
   uniforms.set("uEye", frame.eye());
+  uniforms.set("uNearPlane", nearPlane);
+  uniforms.set("uOutlinePolygons", s.outlinePolygons ? 1 : 0);
   const scene::Lighting& light = s.view.lighting;
   uniforms.set("uSunDirection", glm::normalize(light.sunDirection));
   uniforms.set("uSunColor", light.sunColor);
@@ -76,7 +78,7 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   buffers_.sortKeys.bind(ParticleBuffers::kSortKeysBinding);
 
   gl_.BindVertexArray(vao_);
-  if (count > 0) gl_.DrawArraysInstanced(GL_TRIANGLES, 0, kBoxVertices, static_cast<GLsizei>(count));
+  if (count > 0) gl_.DrawArraysInstanced(GL_TRIANGLES, 0, kProxyVertices, static_cast<GLsizei>(count));
   gl_.Finish();
   checkGlError(gl_, "rendering the particles");
 }

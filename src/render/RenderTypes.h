@@ -66,6 +66,10 @@ struct RenderSettings {
   // volume: the longest list resolved without arrays, 0 … kShortListCapacity (VolumeResolve.h; the
   // image is the same up to rounding whatever it is, only the time changes)
   int volumeShortList = kShortListCapacity;
+  // Particles seen from afar are rasterised as a polygon around their outline, those close by as
+  // their bounding box (shaders/particle.vert.glsl); false: every particle as its box. The image
+  // is the same up to rounding either way; the polygon gives llvmpipe fewer fragments to discard.
+  bool outlinePolygons = true;
   LightingModel lighting = LightingModel::Cloud;
   SunlightModel sunlight = SunlightModel::Volume;
   // With view.lighting.atmosphere: the sky's scattering orders, 1 = single scattering only
