@@ -1,7 +1,8 @@
 #pragma once
 // The particle pass (seed §4.4, §5.4; shaders/particle.vert.glsl, particle.frag.glsl): each
 // particle's proxy is rasterised (a polygon around its outline seen from afar, its bounding box
-// close by), the fragment shader intersects the view ray with the ellipsoid and shades it from the tables (render/Renderer.h gives the shading equations);
+// close by), the fragment shader intersects the view ray with the ellipsoid and shades it from
+// the tables (render/Renderer.h gives the shading equations);
 // radiance and transmittance are alpha-blended back to front (C ← radiance + e^{−τ}·C,
 // T ← e^{−τ}·T) into the float target, the distance to the first matter kept with MIN. In volume
 // mode each segment goes to its pixel's fragment list instead (render/VolumeResolve.h), and only
