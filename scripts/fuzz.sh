@@ -4,9 +4,12 @@
 # runs each fuzz target for SECONDS seconds (default 20: the CI smoke run; more for a campaign).
 # Seeds come from tests/fuzz/corpus/NAME; new inputs go to out/fuzz/corpus/NAME, crashes to
 # out/fuzz/crashes (turn each into a regression test in tests/ with its input).
+# The smoke run uses a fixed seed (CLOUDLUT_FUZZ_SEED, default 1) so that CI explores the same
+# inputs on every run; a campaign sets CLOUDLUT_FUZZ_SEED=0 for a random one.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-20}
+seed=${CLOUDLUT_FUZZ_SEED:-1}
 targets=(fuzz_binary_lut fuzz_exr_lut fuzz_exr_image fuzz_table_description fuzz_manifest fuzz_scene fuzz_query_csv)
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCLOUDLUT_FUZZ=ON >/dev/null
 cmake --build build-fuzz -j"$(nproc)" --target "${targets[@]}"
@@ -21,7 +24,7 @@ status=0
 for t in "${targets[@]}"; do
   mkdir -p "out/fuzz/corpus/$t"
   echo "fuzzing $t for ${seconds}s"
-  if ! ./build-fuzz/tests/fuzz/$t "out/fuzz/corpus/$t" "tests/fuzz/corpus/$t" -max_total_time="$seconds" \
+  if ! ./build-fuzz/tests/fuzz/$t "out/fuzz/corpus/$t" "tests/fuzz/corpus/$t" -max_total_time="$seconds" -seed="$seed" \
        -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 -artifact_prefix=out/fuzz/crashes/$t- -print_final_stats=1 \
        > "out/fuzz/$t.log" 2>&1; then
     echo "FAILED: $t (see out/fuzz/$t.log and out/fuzz/crashes)"

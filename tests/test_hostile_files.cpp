@@ -1,9 +1,11 @@
 // Regression tests for the hostile-input probe of issue 16, the faults about files and work:
-// EXR headers that claim more pixels than their file holds (5, 6), an interrupted re-bake (7)
+// EXR headers that claim more pixels than their file holds (5, 6) or a LUT description that
+// claims more than its window (8), an interrupted re-bake (7)
 // and a render of more particles than it can finish (4).
 #include <catch2/catch.hpp>
 
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -109,6 +111,37 @@ TEST_CASE("fault 6: a LUT EXR whose data window claims more than its file holds 
   claimDataWindow(tmp / "t.exr", 16384, 16384);  // what a 128^4 table's atlas would be
   const std::string message = fileErrorOf([&] { io::readLut(tmp / "t.exr"); });
   CHECK(message.find("t.exr: corrupt: its data window (16384x16384") != std::string::npos);
+  CHECK(runCli("info '" + (tmp / "t.exr").string() + "'").exitCode == 1);
+}
+
+TEST_CASE("fault 8: a LUT EXR whose description claims a larger table than its window is refused unallocated", "[io][hostile]") {
+  TempDir tmp;
+  const Table4D table = makeTable({16, 8, 16, 8}, 2, 0.0f, 1.0f, 1, "optical_depth_pad");
+  io::writeExrLut(table, io::SampleType::Half, tmp / "t.exr");
+  REQUIRE_NOTHROW(io::readLut(tmp / "t.exr"));
+  // The description (the "cloudlut" attribute) now claims 128x64x128x64 nodes: 537 MB of floats
+  // for a file of a few hundred KB. The name loses the 4 bytes the sizes gain, so the header
+  // keeps its length and OpenEXR parses it as before.
+  std::string bytes = readFile(tmp / "t.exr");
+  const auto replaceOnce = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = bytes.find(from);
+    REQUIRE(at != std::string::npos);
+    bytes.replace(at, from.size(), to);
+  };
+  replaceOnce("\"name\":\"optical_depth_pad\"", "\"name\":\"optical_depth\"");
+  for (int k = 0; k < 2; ++k) {
+    replaceOnce("\"size\":16,", "\"size\":128,");
+    replaceOnce("\"size\":8,", "\"size\":64,");
+  }
+  writeFile(tmp / "t.exr", bytes);
+  rusage before{}, after{};
+  getrusage(RUSAGE_SELF, &before);
+  const std::string message = fileErrorOf([&] { io::readLut(tmp / "t.exr"); });
+  getrusage(RUSAGE_SELF, &after);
+  CHECK(message.find("t.exr: the description claims a table of 128x64x128x64 nodes x 2 channels, more than the") !=
+        std::string::npos);
+  // the peak resident size (kB) grew by less than the claim, so the table was never filled
+  CHECK(after.ru_maxrss - before.ru_maxrss < 128 * 1024);
   CHECK(runCli("info '" + (tmp / "t.exr").string() + "'").exitCode == 1);
 }
 

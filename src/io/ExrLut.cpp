@@ -13,6 +13,7 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <Imath/half.h>
 
+#include <algorithm>
 #include <climits>
 #include <cstring>
 #include <fstream>
@@ -336,14 +337,21 @@ LoadedTable decodeExr(const std::filesystem::path& path, const std::string& byte
   // the pixels the header claims must fit in the file (io/ExrBudget.h) before the table and its
   // atlas are allocated: a 26 KB file must not claim a 128^4 table
   checkExrPixelBudget(name, header, bytes.size(), 4, static_cast<std::uint64_t>(kMaxAtlasPixels) * 4);
-  Table4D table = tableFromDescription(description, path);  // checks the size it claims
+  // the description's table must fit in the pixels the header declares (and the budget above
+  // has bounded) before it is allocated; the exact match of dims and window follows
+  const Imath::Box2i window = header.dataWindow();
+  const long long windowWidth = static_cast<long long>(window.max.x) - window.min.x + 1;
+  const long long windowHeight = static_cast<long long>(window.max.y) - window.min.y + 1;
+  std::uint64_t windowChannels = 0;
+  for (auto c = header.channels().begin(); c != header.channels().end(); ++c) ++windowChannels;
+  const std::uint64_t windowSamples = windowChannels * static_cast<std::uint64_t>(std::max(0LL, windowWidth)) *
+                                      static_cast<std::uint64_t>(std::max(0LL, windowHeight));
+  Table4D table = tableFromDescription(description, path, windowSamples);
   const auto d = table.dims();
   const int C = table.channelCount();
   const long long width = static_cast<long long>(d[0]) * d[2];
   const long long height = static_cast<long long>(d[1]) * d[3];
-  const Imath::Box2i window = header.dataWindow();
-  if (static_cast<long long>(window.max.x) - window.min.x + 1 != width ||
-      static_cast<long long>(window.max.y) - window.min.y + 1 != height)
+  if (windowWidth != width || windowHeight != height)
     throw FileError(name, "the image size does not match the dimensions in its description");
 
   std::optional<Imf::PixelType> pixelType;

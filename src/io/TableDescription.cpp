@@ -132,7 +132,8 @@ T required(const nlohmann::json& object, const char* key, const std::filesystem:
 
 }  // namespace
 
-Table4D tableFromDescription(const nlohmann::json& description, const std::filesystem::path& path) {
+Table4D tableFromDescription(const nlohmann::json& description, const std::filesystem::path& path,
+                             std::uint64_t maxSamples) {
   using nlohmann::json;
   const auto axesJson = required<json>(description, "axes", path);
   const auto channelsJson = required<json>(description, "channels", path);
@@ -175,6 +176,16 @@ Table4D tableFromDescription(const nlohmann::json& description, const std::files
                         c.is_object() && c.contains("meaning") && c["meaning"].is_string()
                             ? c["meaning"].get<std::string>()
                             : std::string()});
+  // each size is below 2^31 and there are at most 4 channels: the product needs 126 bits at most,
+  // so it is formed in long double, exact up to 2^64
+  long double samples = static_cast<long double>(channels.size());
+  for (const std::uint32_t d : dims) samples *= d;
+  if (samples > static_cast<long double>(maxSamples))
+    throw FileError(path.string(), "the description claims a table of " + std::to_string(dims[0]) + "x" +
+                                       std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + "x" +
+                                       std::to_string(dims[3]) + " nodes x " + std::to_string(channels.size()) +
+                                       " channels, more than the " + std::to_string(maxSamples) +
+                                       " samples its data holds");
   checkClaimedSize(dims, static_cast<std::uint32_t>(channels.size()), path);
   Table4D table(required<std::string>(description, "name", path), axes, std::move(channels));
   if (description.contains("parameters") && description["parameters"].is_object())

@@ -22,9 +22,12 @@ std::string checksumHex(std::uint64_t checksum);
 bool parseChecksumHex(const std::string& text, std::uint64_t& checksum);
 
 // A table with the name, axes, channels and parameters of `description` and every value 0.
-// Throws FileError(path, ...) if the description is incomplete or inconsistent, or if the
-// table it claims would not fit in memory (checked before allocating).
-Table4D tableFromDescription(const nlohmann::json& description, const std::filesystem::path& path);
+// Throws FileError(path, ...) if the description is incomplete or inconsistent, if the table it
+// claims (nodes × channels) has more than `maxSamples` samples, the most the data that comes
+// with it can hold, or if it would not fit in memory; all checked before allocating. A
+// description is only a claim: a file of a few bytes must not make its reader allocate gigabytes.
+Table4D tableFromDescription(const nlohmann::json& description, const std::filesystem::path& path,
+                             std::uint64_t maxSamples);
 
 // Checks the physical parameters a table records (lut_formats/FORMAT.md: extinction_per_m,
 // radius_m, their product, first_phase, later_phase, seed, density_model; each when present)

@@ -19,7 +19,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       nlohmann::json::parse(std::string(reinterpret_cast<const char*>(data), size), nullptr, false);
   if (description.is_discarded()) return 0;
   try {
-    cloudlut::Table4D table = cloudlut::io::tableFromDescription(description, "fuzz.json");
+    // as if the data that came with it held 2^24 samples (64 MiB of floats)
+    cloudlut::Table4D table = cloudlut::io::tableFromDescription(description, "fuzz.json", 1u << 24);
     cloudlut::io::checkTableParameters(table.parameters(), "fuzz.json");
     const float sigma = cloudlut::unitOpticalRadius(table);
     if (!(sigma > 0.0f) || !std::isfinite(sigma)) std::abort();  // the rules promise a positive, finite σ
