@@ -68,6 +68,7 @@ int runRender(int argc, char** argv) {
     ("volume-pool-mib", "volume blending: node pool budget of one screen tile in MiB (capped by the GL's storage block limit)", cxxopts::value<double>()->default_value("128"))
     ("no-occlusion", "constant sunlight (no light-space occlusion, no sun volume shadows)")
     ("box-proxies", "rasterise every particle as its bounding box, not the polygon around its outline seen from afar (the same image, more fragments: for timing)")
+    ("computed-chords", "the particle shader computes each particle's own chords in the sun volume again instead of reading the splat's (the same image, slower: for timing)")
     ("lighting", "lighting model: cloud (sunlight per shading point, multiple scattering of the cloud around each point, "
      "ambient from the sky above and the ground below through the cloud above and below each point) or seed (the "
      "seed paper's per-particle model)", cxxopts::value<std::string>()->default_value("cloud"))
@@ -128,6 +129,7 @@ int runRender(int argc, char** argv) {
   settings.volumePoolBytes = static_cast<long double>(poolMiB) * 1048576.0L;
   settings.occlusion = args.count("no-occlusion") == 0;
   settings.outlinePolygons = args.count("box-proxies") == 0;
+  settings.sunChordMap = args.count("computed-chords") == 0;
   settings.lighting = render::parseLighting(args["lighting"].as<std::string>());
   settings.sunlight = args.count("sunlight") ? render::parseSunlight(args["sunlight"].as<std::string>())
                                              : render::defaultSunlight(settings.lighting);
@@ -226,6 +228,10 @@ int runRender(int argc, char** argv) {
       if (stats.sunFootprintOverflow > 0)
         std::printf("  sun volume: %zu particle-cascade pair(s) over the footprint limit, left to a coarser cascade\n",
                     stats.sunFootprintOverflow);
+      if (settings.sunChordMap && stats.sunChordsNeeded > 0 && !stats.sunChordMap)
+        std::printf("  sun volume: the chord map (%.1f MiB) is over the GPU buffer budget; the particle shader "
+                    "computes the chords again\n",
+                    static_cast<double>(stats.sunChordsNeeded) * 16.0 / 1048576.0);
     }
   }
   return kExitOk;

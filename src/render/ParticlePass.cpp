@@ -16,7 +16,7 @@ const std::vector<std::string> kVertexFiles = {"particle_common.glsl", "particle
 const std::vector<std::string> kFragmentFiles = {
     "cloudlut_geometry.glsl", "cloudlut_phase.glsl", "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
     "particle_common.glsl", "volume_fragments.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
-    "cascade_columns.glsl", "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
+    "sun_chord_map.glsl", "cascade_columns.glsl", "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
     "cloudlut_detail_noise.glsl", "particle_detail.glsl", "particle.frag.glsl"};
 constexpr GLsizei kProxyVertices = 36;  // the box's 6 faces × 2 triangles, or the polygon's fan (particle.vert.glsl)
 constexpr int kSunVolumeUnit = 3;      // texture unit after the three tables (ShadingTables)
@@ -27,13 +27,19 @@ constexpr int kZenithVolumeUnit = 4;
 ParticlePass::ParticlePass(const GlFunctions& gl, const GlContext& context, const io::LutSet& luts,
                            ParticleBuffers& buffers)
     : gl_(gl), buffers_(buffers), tables_(gl, context, luts) {
-  program_ = linkDrawProgram(gl, kVertexFiles, kFragmentFiles,
-                             VolumeResolve::fragmentDefines() + SunVolume::samplingDefines(), "particle");
-  requireParticleRecordLayout(gl, program_.id(), "particle program");
+  program_ = linkProgram(gl, true);
   gl_.GenVertexArrays(1, &vao_);
 }
 
 ParticlePass::~ParticlePass() { gl_.DeleteVertexArrays(1, &vao_); }
+
+GlProgram ParticlePass::linkProgram(const GlFunctions& gl, bool chordMap) {
+  GlProgram program = linkDrawProgram(gl, kVertexFiles, kFragmentFiles,
+                                      VolumeResolve::fragmentDefines() + SunVolume::samplingDefines(chordMap),
+                                      "particle");
+  requireParticleRecordLayout(gl, program.id(), "particle program");
+  return program;
+}
 
 void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
                         const RenderSettings& s, const SunVolume& sun, bool sunBuilt, const SunVolume& zenith,
@@ -47,8 +53,12 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   gl_.BlendFuncSeparatei(0, GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_SRC_ALPHA);
   gl_.BlendEquationi(1, GL_MIN);
 
-  gl_.UseProgram(program_.id());
-  const ProgramUniforms uniforms(gl_, program_.id());
+  // the chord map when it holds every chord (or when no volume was built: it is not read then)
+  const bool fromMap = s.sunChordMap && (!sunBuilt || sun.chordMapComplete());
+  if (!fromMap && computedChordsProgram_.id() == 0) computedChordsProgram_ = linkProgram(gl_, false);
+  const GlProgram& program = fromMap ? program_ : computedChordsProgram_;
+  gl_.UseProgram(program.id());
+  const ProgramUniforms uniforms(gl_, program.id());
   const scene::CameraFrame frame(s.view.camera, width, height);
   const float nearPlane = farPlane * 1e-6f;
   uniforms.set("uViewProjection", frame.projectionMatrix(nearPlane, farPlane) * frame.viewMatrix());
@@ -70,6 +80,7 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   uniforms.set("uDetailNoise", s.detail.packed());
   uniforms.set("uSunlightVolume", sunBuilt && s.occlusion && s.sunlight == SunlightModel::Volume ? 1 : 0);
   sun.bind(uniforms, kSunVolumeUnit);
+  sun.bindChordMap();
   if (!sunBuilt) uniforms.set("uSunCascades", 0);
   zenith.bind(uniforms, kZenithVolumeUnit, "uZenith");
   if (!zenithBuilt) uniforms.set("uZenithCascades", 0);

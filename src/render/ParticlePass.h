@@ -38,16 +38,22 @@ class ParticlePass {
   // `sun`: the sun optical-depth volume of this frame when `sunBuilt` (else every point is
   // unshadowed by it). `zenith`: the zenith optical-depth volume (vertical columns) when
   // `zenithBuilt`, for the cloud lighting's ambient under a sky from above (else no cloud lies
-  // above or below any point). Waits for the GPU (glFinish).
+  // above or below any point). A particle's own chords come from the sun volume's chord map
+  // when it holds them all and the settings want it (sunChordMap), else the shader computes
+  // them. Waits for the GPU (glFinish).
   void draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
             const RenderSettings& settings, const SunVolume& sun, bool sunBuilt, const SunVolume& zenith,
             bool zenithBuilt);
 
  private:
+  // The particle program, reading the chord map (chordMap) or computing the chords.
+  static GlProgram linkProgram(const GlFunctions& gl, bool chordMap);
+
   const GlFunctions& gl_;
   ParticleBuffers& buffers_;
   ShadingTables tables_;
-  GlProgram program_;
+  GlProgram program_;                // reads the sun volume's chord map (SunVolume::chordMapComplete)
+  GlProgram computedChordsProgram_;  // computes the chords again; linked when first needed
   GLuint vao_ = 0;
 };
 

@@ -70,6 +70,10 @@ struct RenderSettings {
   // their bounding box (shaders/particle.vert.glsl); false: every particle as its box. The image
   // is the same up to rounding either way; the polygon gives llvmpipe fewer fragments to discard.
   bool outlinePolygons = true;
+  // The sun volume keeps the chords it splatted (SunVolume, shaders/sun_chord_map.glsl) and the
+  // particle shader reads them to take each particle's own ramp out; false: the shader computes
+  // them again (the same image, slower: for timing).
+  bool sunChordMap = true;
   LightingModel lighting = LightingModel::Cloud;
   SunlightModel sunlight = SunlightModel::Volume;
   // With view.lighting.atmosphere: the sky's scattering orders, 1 = single scattering only
@@ -129,6 +133,8 @@ struct RenderStats {
   std::size_t volumePoolBytes = 0;   // volume: bytes of the node pool (one tile's)
   std::size_t tileOverflow = 0;      // occlusion: cover-bin entries dropped (render/LightOcclusion.h)
   std::size_t sunFootprintOverflow = 0;  // sun volume: particle-cascade pairs left to a coarser cascade
+  std::size_t sunChordsNeeded = 0;  // sun volume: chords of every footprint (SunVolume::chordsNeeded)
+  bool sunChordMap = false;         // sun volume: the chord map held them all and the particle shader read it
   std::size_t rayMarchDroppedPixels = 0;  // ray marcher: pixels whose view or a shadow ray left particles out
   std::size_t rayMarchBudgetPixels = 0;   // ray marcher: pixels whose loops the GL cut short
 };

@@ -120,7 +120,7 @@ struct Renderer::Impl {
     if (sun)
       skipped = sunVolume.build(grid, count, particles.tables().opticalDepthTexture(),
                                 particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(),
-                                stats != nullptr);
+                                stats != nullptr, s.sunChordMap);
     const bool zenith = needsZenithVolume(s) && count > 0;
     if (zenith)
       zenithVolume.build(zenithGrid, count, particles.tables().opticalDepthTexture(),
@@ -130,6 +130,8 @@ struct Renderer::Impl {
       stats->occlusionSeconds = clock.seconds();
       if (s.occlusion && count > 0) stats->tileOverflow = dropped;
       stats->sunFootprintOverflow = skipped;
+      stats->sunChordsNeeded = sun ? sunVolume.chordsNeeded() : 0;
+      stats->sunChordMap = sun && sunVolume.chordMapComplete();
     }
     return {sun, zenith};
   }

@@ -52,7 +52,8 @@ SkyPass::SkyPass(const GlFunctions& gl, const GlContext& context)
   aerialProgram_ = linkComputeProgram(gl, withFiles(kAtmosphereFiles, {"sky_aerial_slices.glsl", "sky_aerial.comp.glsl"}), aerial);
   const std::vector<std::string> sunFiles = withFiles(
       kAtmosphereFiles, {"cloudlut_sampling.glsl", "cloudlut_shading.glsl", "sun_volume.glsl",
-                         "sun_volume_chord.glsl", "cascade_columns.glsl", "sun_volume_sampling.glsl",
+                         "sun_volume_chord.glsl", "sun_chord_map.glsl", "cascade_columns.glsl",
+                         "sun_volume_sampling.glsl",
                          "sky_aerial_slices.glsl", "sky_shafts.glsl"});
   shaftsProgram_ = linkComputeProgram(gl, withFiles(sunFiles, {"sky_shafts.comp.glsl"}),
                                       aerial + glslDefine("SHAFT_PIECES", kShaftPieces) + SunVolume::samplingDefines());

@@ -1,5 +1,8 @@
 #include "render/SunVolume.h"
 
+#include <algorithm>
+#include <climits>
+#include <functional>
 #include <string>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -12,13 +15,17 @@ namespace cloudlut::render {
 namespace {
 
 constexpr GLuint kDeltasBinding = 5;
+constexpr GLuint kFootprintsBinding = 9;  // sun_chord_map.glsl
+constexpr GLuint kChordsBinding = 10;
+constexpr std::size_t kChordHeaderBytes = 16;  // sunChordsUsed, sunChordsCapacity and two pad words
+constexpr std::size_t kChordBytes = 16;        // τ, wFirst, wFar and a pad word
 constexpr GLuint kTauImageUnit = 2;
 constexpr std::size_t kCountersBytes = 16;  // footprintOverflow and three pad words
 
 const std::vector<std::string> kBuildFiles = {"cloudlut_geometry.glsl", "cloudlut_sampling.glsl",
                                               "cloudlut_shading.glsl",  "particle_common.glsl",
                                               "sun_volume.glsl",        "sun_volume_chord.glsl",
-                                              "sun_volume_build.comp.glsl"};
+                                              "sun_chord_map.glsl",     "sun_volume_build.comp.glsl"};
 
 std::string buildDefines(int stage) {
   return glslDefine("STAGE", stage) + glslDefine("GROUP_SIZE", SunVolume::kGroupSize) +
@@ -28,12 +35,23 @@ std::string buildDefines(int stage) {
 
 }  // namespace
 
-std::string SunVolume::samplingDefines() { return glslDefine("SUN_CASCADES_MAX", kSunCascadesMax); }
+std::string SunVolume::samplingDefines(bool chordMap) {
+  return glslDefine("SUN_CASCADES_MAX", kSunCascadesMax) + glslDefine("SUN_CHORD_MAP", chordMap ? 1 : 0);
+}
 
 SunVolume::SunVolume(const GlFunctions& gl, const GlContext& context, const StorageBudget& budget,
                      ParticleBuffers& buffers)
-    : gl_(gl), context_(context), budget_(budget), buffers_(buffers), deltas_(gl) {
-  for (int stage = 0; stage < 2; ++stage) {
+    : gl_(gl),
+      context_(context),
+      budget_(budget),
+      buffers_(buffers),
+      deltas_(gl),
+      footprints_(gl),
+      chords_(gl) {
+  // never empty: a program that declares the map may be drawn before any build
+  footprints_.ensure(16);
+  chords_.ensure(kChordHeaderBytes);
+  for (int stage = 0; stage < 3; ++stage) {
     stages_[stage] = linkComputeProgram(gl, kBuildFiles, buildDefines(stage));
     requireParticleRecordLayout(gl, stages_[stage].id(), "sun_volume_build.comp.glsl");
   }
@@ -44,8 +62,11 @@ SunVolume::~SunVolume() {
 }
 
 std::size_t SunVolume::build(const SunVolumeGrid& grid, std::size_t count, GLuint opticalDepthTexture,
-                             const glm::vec4& opticalDepthDims, float sigma, bool countOverflow) {
+                             const glm::vec4& opticalDepthDims, float sigma, bool countOverflow,
+                             bool keepChords) {
   grid_ = grid;
+  mapped_ = false;
+  chordsNeeded_ = 0;
   const glm::ivec3 d = grid.dims;
   const glm::ivec3 texDims(d.x, d.y, d.z * grid.cascades);
   const std::size_t columns = static_cast<std::size_t>(d.x) * d.y * grid.cascades;
@@ -75,7 +96,7 @@ std::size_t SunVolume::build(const SunVolumeGrid& grid, std::size_t count, GLuin
   gl_.BindImageTexture(kTauImageUnit, texture_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
   gl_.ActiveTexture(GL_TEXTURE0);
   gl_.BindTexture(GL_TEXTURE_3D, opticalDepthTexture);
-  for (int stage = 0; stage < 2; ++stage) {
+  const auto run = [&](int stage) {
     const GlProgram& p = stages_[stage];
     gl_.UseProgram(p.id());
     const ProgramUniforms u(gl_, p.id());
@@ -85,13 +106,17 @@ std::size_t SunVolume::build(const SunVolumeGrid& grid, std::size_t count, GLuin
     u.set("uOpticalDepth", 0);
     u.set("uOpticalDepthDims", opticalDepthDims);
     u.set("uCascades", grid.cascades);
+    u.set("uMapChords", mapped_ ? 1 : 0);
     gl_.Uniform3i(p.uniform("uDims"), d.x, d.y, d.z);
     gl_.UniformMatrix4fv(p.uniform("uToGrid"), grid.cascades, GL_FALSE, glm::value_ptr(grid.toGrid[0]));
     gl_.UniformMatrix4fv(p.uniform("uToWorld"), grid.cascades, GL_FALSE, glm::value_ptr(grid.toWorld[0]));
-    const std::size_t threads = stage == 0 ? count : columns;
+    const std::size_t threads = stage == 1 ? columns : count;
     if (threads > 0) gl_.DispatchCompute(groupsFor(threads, kGroupSize), 1, 1);
     fullBarrier(gl_);
-  }
+  };
+  if (keepChords) mapped_ = sizeChordMap(count, run);
+  run(0);
+  run(1);
   std::size_t overflow = 0;
   if (countOverflow) {
     GLuint skipped = 0;
@@ -100,6 +125,30 @@ std::size_t SunVolume::build(const SunVolumeGrid& grid, std::size_t count, GLuin
   }
   checkGlError(gl_, "building the sun optical-depth volume");
   return overflow;
+}
+
+bool SunVolume::sizeChordMap(std::size_t count, const std::function<void(int)>& run) {
+  // Where each particle's chords are: a footprint per particle and cascade (16 bytes).
+  const long double footprintBytes =
+      static_cast<long double>(std::max<std::size_t>(count, 1)) * kSunCascadesMax * 16.0L;
+  if (footprintBytes > budget_.limitBytes()) return false;
+  footprints_.ensure(static_cast<std::size_t>(footprintBytes));
+  footprints_.bind(kFootprintsBinding);
+  // Count the chords (STAGE 2); the map is kept only if the budget holds them all.
+  const GLuint zero[4] = {0, 0, 0, 0};
+  chords_.write(0, sizeof zero, zero);
+  chords_.bind(kChordsBinding);
+  run(2);
+  GLuint needed = 0;
+  chords_.read(0, sizeof needed, &needed);
+  chordsNeeded_ = needed;
+  const long double bytes = kChordHeaderBytes + static_cast<long double>(needed) * kChordBytes;
+  if (bytes > budget_.limitBytes() || needed > static_cast<GLuint>(INT_MAX)) return false;
+  chords_.ensure(static_cast<std::size_t>(bytes));
+  const GLuint header[4] = {0, needed, 0, 0};
+  chords_.write(0, sizeof header, header);
+  chords_.bind(kChordsBinding);
+  return true;
 }
 
 void SunVolume::bind(const ProgramUniforms& uniforms, int unit, const std::string& prefix) const {
@@ -115,6 +164,11 @@ void SunVolume::bind(const ProgramUniforms& uniforms, int unit, const std::strin
                        glm::value_ptr(grid_.toWorld[0]));
   uniforms.set(name("Columns").c_str(), grid_.sun);
   uniforms.set(name("LocalCloud").c_str(), grid_.localCloud);
+}
+
+void SunVolume::bindChordMap() const {
+  footprints_.bind(kFootprintsBinding);
+  chords_.bind(kChordsBinding);
 }
 
 std::vector<float> SunVolume::readBack() const {

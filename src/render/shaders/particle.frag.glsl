@@ -1,8 +1,8 @@
 // particle.frag.glsl — shades one particle along one view ray with the tables (seed §4.4, §5.4).
 // Preceded by cloudlut_geometry.glsl, cloudlut_phase.glsl, cloudlut_sampling.glsl,
 // cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl,
-// volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl, sun_volume_sampling.glsl and
-// zenith_volume_sampling.glsl.
+// volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl, sun_chord_map.glsl,
+// sun_volume_sampling.glsl and zenith_volume_sampling.glsl.
 // Two lighting models (render/RenderTypes.h, docs/LIGHTING.md): the seed's (uLighting 0) and the
 // cloud model (uLighting 1), whose equations are cloudlut_shading.glsl's.
 //
@@ -129,8 +129,8 @@ void main() {
   // Sunlight reaching the particle: per particle from the occlusion pass (seed §5.3), or at the
   // mean scattering point from the sun volume, less the particle's own chord there.
   float sunlight = p.toParticle[2].w;
-  vec4 sunTau = sunOpticalDepths(xMean, p.centerDensity.xyz, toParticle, rho, uOpticalDepth, uOpticalDepthDims,
-                                 uUnitOpticalRadius);
+  vec4 sunTau = sunOpticalDepths(xMean, vParticle, p.centerDensity.xyz, toParticle, rho, uOpticalDepth,
+                                 uOpticalDepthDims, uUnitOpticalRadius);
   float tauOutside = uSunlightVolume != 0 ? sunTau.x : 0.0;
   if (uSunlightVolume != 0) sunlight = exp(-tauOutside);
 

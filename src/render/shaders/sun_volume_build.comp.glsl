@@ -1,12 +1,15 @@
 // sun_volume_build.comp.glsl — fills the sun optical-depth volume (sun_volume.glsl) from the
 // particles. Preceded by cloudlut_geometry.glsl, cloudlut_sampling.glsl, cloudlut_shading.glsl,
-// particle_common.glsl, sun_volume.glsl and the defines STAGE, SUN_CASCADES_MAX,
-// SUN_FOOTPRINT_MAX and SUN_FIXED_SCALE (render/SunVolume.cpp):
+// particle_common.glsl, sun_volume.glsl, sun_volume_chord.glsl, sun_chord_map.glsl and the
+// defines STAGE, SUN_CASCADES_MAX, SUN_FOOTPRINT_MAX and SUN_FIXED_SCALE (render/SunVolume.cpp):
 //   STAGE 0  one invocation per particle: for every column of every cascade its bounding sphere
 //            shadows, the chord of the column's sun ray through the ellipsoid, its optical depth
 //            from the optical-depth table (seed §4.1) and the two deltas of its ramp, added as
 //            fixed-point integers (order-independent, so the volume does not depend on the
-//            order or the timing of the invocations);
+//            order or the timing of the invocations); with uMapChords, the chords are kept in
+//            the chord map (sun_chord_map.glsl) for the particle shader;
+//   STAGE 2  (before 0, with uMapChords) one invocation per particle: the chords the chord map
+//            needs, so that it can be sized before the splat;
 //   STAGE 1  one invocation per column: the double prefix sum from the sun side, τ at every
 //            slice stored into the volume texture; the deltas are cleared for the next frame.
 
@@ -21,6 +24,7 @@ uniform int uCascades;
 uniform ivec3 uDims;             // columns Nu, Nv and slices Nw of one cascade
 uniform mat4 uToGrid[SUN_CASCADES_MAX];
 uniform mat4 uToWorld[SUN_CASCADES_MAX];
+uniform int uMapChords;          // 1: fill the chord map (the sun volume; not the zenith volume)
 
 layout(std430, binding = 5) buffer SunDeltas {
   uint footprintOverflow;        // particle-cascade pairs skipped: footprint over SUN_FOOTPRINT_MAX
@@ -48,42 +52,78 @@ void addDelta(int base, float w, float e) {
   }
 }
 
+// The columns of cascade k that the bounding sphere (centre, reach: world) of a particle
+// shadows, clamped to the grid: first column lo and size (columns); false when none.
+bool sunFootprint(vec3 centre, float reach, int k, out ivec2 lo, out ivec2 size) {
+  vec3 g = (uToGrid[k] * vec4(centre, 1.0)).xyz;
+  // Half-widths in (u, v) of the shadow of the bounding sphere: the support function of a
+  // sphere of radius `reach` along the rows of the (linear) map.
+  vec2 extent = reach * vec2(length(vec3(uToGrid[k][0][0], uToGrid[k][1][0], uToGrid[k][2][0])),
+                           length(vec3(uToGrid[k][0][1], uToGrid[k][1][1], uToGrid[k][2][1])));
+  lo = max(ivec2(ceil(g.xy - extent)), ivec2(0));
+  ivec2 hi = min(ivec2(floor(g.xy + extent)), uDims.xy - 1);
+  size = hi - lo + 1;
+  return hi.x >= lo.x && hi.y >= lo.y;
+}
+
 #if STAGE == 0
 void main() {
   uint index = gl_GlobalInvocationID.x;
   if (index >= uCount) return;
   GpuParticle p = particles[index];
   float rho = p.centerDensity.w;
+  if (uMapChords != 0)
+    for (int k = 0; k < uCascades; ++k) sunChordFootprints[int(index) * SUN_CASCADES_MAX + k] = ivec4(SUN_CHORDS_NONE);
   if (!(rho > 0.0)) return;
   vec3 centre = p.centerDensity.xyz;
   mat3 toParticle = mat3(p.toParticle[0].xyz, p.toParticle[1].xyz, p.toParticle[2].xyz);
   float reach = p.toParticle[1].w;  // bounding-sphere radius (particle_common.glsl)
   for (int k = 0; k < uCascades; ++k) {
-    vec3 g = (uToGrid[k] * vec4(centre, 1.0)).xyz;
-    // Half-widths in (u, v) of the shadow of the bounding sphere: the support function of a
-    // sphere of radius `reach` along the rows of the (linear) map.
-    vec2 extent = reach * vec2(length(vec3(uToGrid[k][0][0], uToGrid[k][1][0], uToGrid[k][2][0])),
-                             length(vec3(uToGrid[k][0][1], uToGrid[k][1][1], uToGrid[k][2][1])));
-    ivec2 lo = max(ivec2(ceil(g.xy - extent)), ivec2(0));
-    ivec2 hi = min(ivec2(floor(g.xy + extent)), uDims.xy - 1);
-    if (hi.x < lo.x || hi.y < lo.y) continue;
-    if ((hi.x - lo.x + 1) * (hi.y - lo.y + 1) > SUN_FOOTPRINT_MAX) {
+    ivec2 lo, size;
+    if (!sunFootprint(centre, reach, k, lo, size)) continue;
+    if (size.x * size.y > SUN_FOOTPRINT_MAX) {
       atomicAdd(footprintOverflow, 1u);
       continue;
     }
+    // its place in the chord map, which STAGE 2 sized to hold every footprint
+    int first = -1;
+    if (uMapChords != 0) {
+      uint need = uint(size.x * size.y);
+      uint at = atomicAdd(sunChordsUsed, need);
+      if (at + need <= sunChordsCapacity) {
+        first = int(at);
+        sunChordFootprints[int(index) * SUN_CASCADES_MAX + k] = ivec4(first, lo, size.x | (size.y << 16));
+      }
+    }
     float dwds = (uToGrid[k] * vec4(uSun, 0.0)).z;  // slices per world unit along the sun ray
-    for (int j = lo.y; j <= hi.y; ++j)
-      for (int i = lo.x; i <= hi.x; ++i) {
+    for (int j = lo.y; j < lo.y + size.y; ++j)
+      for (int i = lo.x; i < lo.x + size.x; ++i) {
         float tau, wFirst, wFar;
-        if (!sunColumnChord(uOpticalDepth, uOpticalDepthDims, uSigma, uToWorld[k], dwds, vec2(i, j), centre,
-                            toParticle, rho, uSun, tau, wFirst, wFar))
-          continue;
+        bool hit = sunColumnChord(uOpticalDepth, uOpticalDepthDims, uSigma, uToWorld[k], dwds, vec2(i, j), centre,
+                                  toParticle, rho, uSun, tau, wFirst, wFar);
+        if (first >= 0) sunChords[first + (j - lo.y) * size.x + (i - lo.x)] = vec4(hit ? tau : 0.0, wFirst, wFar, 0.0);
+        if (!hit) continue;
         float e = tau / max(wFirst - wFar, 1e-6);
         int base = columnBase(k, i, j);
         addDelta(base, wFirst, e);
         addDelta(base, wFar, -e);
       }
   }
+}
+#elif STAGE == 2
+// The chords the chord map needs this frame (one per footprint column), added into sunChordsUsed.
+void main() {
+  uint index = gl_GlobalInvocationID.x;
+  if (index >= uCount) return;
+  GpuParticle p = particles[index];
+  if (!(p.centerDensity.w > 0.0)) return;
+  uint need = 0u;
+  for (int k = 0; k < uCascades; ++k) {
+    ivec2 lo, size;
+    if (sunFootprint(p.centerDensity.xyz, p.toParticle[1].w, k, lo, size) && size.x * size.y <= SUN_FOOTPRINT_MAX)
+      need += uint(size.x * size.y);
+  }
+  if (need > 0u) atomicAdd(sunChordsUsed, need);
 }
 #else
 void main() {

@@ -1,7 +1,9 @@
 // sun_volume_sampling.glsl — reading the sun optical-depth volume (sun_volume.glsl) in a shader
 // (GLSL only). Bind it with SunVolume::bind. Requires SUN_CASCADES_MAX, sun_volume.glsl,
-// sun_volume_chord.glsl and cascade_columns.glsl. With uSunCascades = 0 (no volume built) every
-// point is unshadowed.
+// sun_volume_chord.glsl, sun_chord_map.glsl and cascade_columns.glsl, and SUN_CHORD_MAP: 1 when
+// the chord map holds every chord of the frame, 0 to compute them (two programs, not a branch:
+// llvmpipe runs an untaken branch's texture reads for every fragment all the same). With
+// uSunCascades = 0 (no volume built) every point is unshadowed.
 
 uniform sampler3D uSunTau;       // R32F, cascades stacked along the depth; S, T clamp to border 0
 uniform int uSunCascades;
@@ -23,17 +25,18 @@ float sunOpticalDepth(vec3 x) {
   return 0.0;
 }
 
-// What the volume says of the sunlight at world point x of one particle (centre, toParticle =
-// M⁻¹, density ρ), from the finest cascade whose columns hold x (all dimensionless):
+// What the volume says of the sunlight at world point x of particle record `particle` (centre,
+// toParticle = M⁻¹, density ρ), from the finest cascade whose columns hold x (all dimensionless):
 //   x  τ toward the sun from x, less the particle's own ramp as the splat laid it into the four
-//      columns and two slices the sample filters (the sunlight reaching x from outside it);
+//      columns and two slices the sample filters (the sunlight reaching x from outside it; the
+//      chords from the chord map, or computed as the splat did them);
 //   y  τ toward the sun from x, all of it;
 //   z  τ of the whole column through x (its far end, slice 0);
 //   w  the same column less the particle's own chords (the cloud around the particle along the
 //      sun: 0 for a particle alone, up to the fixed-point rounding).
 // (0, 0, 0, 0) outside every cascade.
-vec4 sunOpticalDepths(vec3 x, vec3 centre, mat3 toParticle, float rho, sampler3D opticalDepth, vec4 opticalDepthDims,
-                      float sigma) {
+vec4 sunOpticalDepths(vec3 x, int particle, vec3 centre, mat3 toParticle, float rho, sampler3D opticalDepth,
+                      vec4 opticalDepthDims, float sigma) {
   for (int k = 0; k < uSunCascades; ++k) {
     vec3 g = (uSunToGrid[k] * vec4(x, 1.0)).xyz;
     if (!cascadeHoldsColumns(g, uSunDims)) continue;
@@ -44,13 +47,27 @@ vec4 sunOpticalDepths(vec3 x, vec3 centre, mat3 toParticle, float rho, sampler3D
     vec2 base = floor(g.xy), f = g.xy - base;
     float w0 = min(floor(w), float(uSunDims.z) - 2.0), fw = w - w0;
     float own = 0.0, ownColumn = 0.0;
+#if SUN_CHORD_MAP
+    ivec4 footprint = sunChordFootprints[particle * SUN_CASCADES_MAX + k];
+#endif
     for (int n = 0; n < 4; ++n) {
       vec2 corner = vec2(float(n & 1), float(n >> 1));
       float weight = mix(1.0 - f.x, f.x, corner.x) * mix(1.0 - f.y, f.y, corner.y);
+      if (weight <= 0.0) continue;
       float tau, wFirst, wFar;
-      if (weight <= 0.0 || !sunColumnChord(opticalDepth, opticalDepthDims, sigma, uSunToWorld[k], dwds, base + corner,
-                                           centre, toParticle, rho, uSunColumns, tau, wFirst, wFar))
+#if SUN_CHORD_MAP
+      int at = sunChordIndex(footprint, ivec2(base + corner));
+      if (at < 0) continue;  // outside the footprint, or not splatted into this cascade
+      vec4 chord = sunChords[at];
+      tau = chord.x;
+      wFirst = chord.y;
+      wFar = chord.z;
+      if (!(tau > 0.0)) continue;
+#else
+      if (!sunColumnChord(opticalDepth, opticalDepthDims, sigma, uSunToWorld[k], dwds, base + corner, centre,
+                          toParticle, rho, uSunColumns, tau, wFirst, wFar))
         continue;
+#endif
       own += weight * mix(sunVolumeRampAt(tau, wFirst, wFar, w0), sunVolumeRampAt(tau, wFirst, wFar, w0 + 1.0), fw);
       ownColumn += weight * sunVolumeRampAt(tau, wFirst, wFar, 0.0);
     }
