@@ -119,38 +119,48 @@ TEST_CASE("volume order: more than 32 overlapping segments resolve bit-identical
               stats.truncatedPixels);
 }
 
-TEST_CASE("volume order: short lists resolve without arrays, as the chunked resolve does, in any order",
+TEST_CASE("volume order: the sorting networks resolve lists as the chunked resolve does, in any order",
           "[render][volume]") {
-  // Five spheres of radius 1.5, 0.9 apart along the view: pixels near the axis cross up to five
-  // overlapping segments, those farther out fewer. The array-free resolve takes the lists of up
-  // to kShortListCapacity segments, the chunked one the rest; with volumeShortList = 0 the
-  // chunked one takes every list. Both composite a list in one exact sweep, so they must agree to
-  // rounding; and each must give the same bits whatever order the particles are drawn in.
+  // Forty spheres of radius 1.5, 0.9 apart along the view: pixels near the axis cross all forty
+  // segments, those farther out fewer. The networks take the lists of up to 4, 8, 16 and 32
+  // segments, the chunked resolve the rest; with volumeShortList = 0 the chunked one takes every
+  // list. All composite a list in one exact sweep (the chunked one has 32 per chunk), so they must
+  // agree to rounding; and each must give the same bits whatever order the particles are drawn in.
   RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
   Renderer& renderer = rig.renderer;
   RenderSettings s = columnSettings(40.0f);
+  s.width = 160;  // enough pixels in every length class
+  s.height = 120;
   s.blend = BlendMode::Volume;
-  const std::vector<Particle> ps = column(5, 1.5f, 0.9f, 0.8f, 0.3f, 0.6f);
+  // Drawn in a random order (a fixed shuffle), so that the lists arrive unsorted.
+  const std::vector<Particle> inDepthOrder = column(40, 1.5f, 0.9f, 0.8f, 0.3f, 0.6f);
+  std::vector<Particle> ps = inDepthOrder;
+  unsigned state = 2024u;
+  for (std::size_t k = ps.size() - 1; k > 0; --k) {  // Fisher–Yates with a linear congruential sequence
+    state = state * 1664525u + 1013904223u;
+    std::swap(ps[k], ps[(state >> 8) % (k + 1)]);
+  }
   RenderStats stats;
   const Image image = renderer.render(ps, s, &stats);
   REQUIRE(stats.fragmentOverflow == 0);
-  REQUIRE(stats.longListPixels > 0);                          // some pixels see all five
-  REQUIRE(stats.fragments > 3 * stats.longListPixels + 200);  // and many see two to four
+  REQUIRE(stats.longListPixels > 0);                    // some pixels see more than 32
+  REQUIRE(stats.midListPixels > stats.longListPixels);  // some 9 to 32
+  REQUIRE(stats.fragments > 9 * stats.midListPixels);   // and many fewer than 9
   RenderSettings chunked = s;
   chunked.volumeShortList = 0;
   RenderStats chunkedStats;
   const Image reference = renderer.render(ps, chunked, &chunkedStats);
   const WorstDifference worst = worstDifference(image, reference);
-  std::printf("[volume order] 5 overlapping spheres: %zu fragments, %zu pixels over %d segments; against the "
-              "chunked resolve opacity %.2e, colour (relative) %.2e\n",
-              stats.fragments, stats.longListPixels, kShortListCapacity, worst.alpha, worst.colour);
-  CHECK(chunkedStats.longListPixels > stats.longListPixels);
+  std::printf("[volume order] 40 overlapping spheres: %zu fragments, %zu pixels over 8 segments, %zu over %d; "
+              "against the chunked resolve opacity %.2e, colour (relative) %.2e\n",
+              stats.fragments, stats.midListPixels, stats.longListPixels, kShortListCapacity, worst.alpha,
+              worst.colour);
+  CHECK(chunkedStats.longListPixels > stats.midListPixels);
   CHECK(worst.alpha < 1e-5);
   CHECK(worst.colour < 1e-4);
 
-  std::vector<Particle> reversed(ps.rbegin(), ps.rend());
-  const std::vector<Particle> shuffled = {ps[2], ps[4], ps[0], ps[3], ps[1]};
-  for (const auto& order : {reversed, shuffled}) {
+  const std::vector<Particle> reversed(ps.rbegin(), ps.rend());
+  for (const auto& order : {reversed, inDepthOrder}) {
     const Image again = renderer.render(order, s);
     CHECK(mismatches(again.rgba, image.rgba) == 0);
     CHECK(mismatches(again.distance, image.distance) == 0);
@@ -168,7 +178,7 @@ TEST_CASE("volume order: a stack of disjoint particles composites front to back 
   RenderSettings s = columnSettings(3.0f);
   // Spheres of radius 0.2, 0.45 apart: no two overlap, so no ray's segments do, and volume
   // blending reduces to alpha blending in depth order (seed eqs. 16–17). Four of them: the
-  // array-free resolve of short lists; sixty: the chunked resolve, over more than one chunk.
+  // sorting network of short lists; sixty: the chunked resolve, over more than one chunk.
   for (const int count : {4, 60}) {
     const std::vector<Particle> ps = column(count, 0.2f, 0.45f, 0.03f, 0.001f, 0.02f);
     s.blend = BlendMode::Alpha;

@@ -214,11 +214,13 @@ int runRender(int argc, char** argv) {
         std::printf("  particles at 1/%d resolution, upscale %.1f ms\n", settings.downscale, 1e3 * stats.upscaleSeconds);
       if (settings.blend == render::BlendMode::Volume)
         std::printf("  volume blending: %zu tile(s) (%zu split for the fragment load), pool %.1f MiB, %zu fragments, "
-                    "%zu overflowed (alpha-blended), %zu pixels over %d segments, %zu over %d, resolve %.1f ms\n",
+                    "%zu overflowed (alpha-blended), %zu pixels over %d segments, %zu over %d (chunked), %zu over %d "
+                    "(more than one chunk), resolve %.1f ms\n",
                     stats.volumeTiles, stats.volumeRedrawnTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0,
                     stats.fragments,
-                    stats.fragmentOverflow, stats.truncatedPixels, render::kMaxSegmentsPerPixel, stats.longListPixels,
-                    settings.volumeShortList, 1e3 * stats.resolveSeconds);
+                    stats.fragmentOverflow, stats.midListPixels, std::min(render::kSortedResolveSlots[1], settings.volumeShortList),
+                    stats.longListPixels, settings.volumeShortList, stats.truncatedPixels, render::kMaxSegmentsPerPixel,
+                    1e3 * stats.resolveSeconds);
       if (stats.resolveCutPixels > 0)
         std::fprintf(stderr,
                      "cloudlut render: warning: %zu pixels hold more fragments than this GL's loop budget lets the "

@@ -1,6 +1,7 @@
 #pragma once
 // What a render of the particle renderer takes and gives: its settings, the image (radiance,
 // opacity, distance to the first matter) and the time and counts of its passes.
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -22,10 +23,13 @@ inline constexpr int kLightTiles = 64;
 // (render/VolumeResolve.h; pixels with more take ⌈count / kMaxSegmentsPerPixel⌉ chunks), and the
 // default size of the fragment node pool per pixel of the particle buffer.
 inline constexpr int kMaxSegmentsPerPixel = 32;
-// Lists of at most this many segments are resolved without arrays (render/VolumeResolve.h), the
-// longer ones in chunks of kMaxSegmentsPerPixel; both composite such a list in one exact sweep.
-// The array-free sweep walks a list 2L times, so it pays only for short lists.
-inline constexpr int kShortListCapacity = 4;
+// Lists of at most this many segments are resolved by fixed sorting networks without arrays in
+// memory (render/VolumeResolve.h), the longer ones in chunks of kMaxSegmentsPerPixel; both
+// composite such a list in one exact sweep.
+inline constexpr int kShortListCapacity = 32;
+// The sorted resolves' segments: lists of up to 4, 8, 16 and 32 (kShortListCapacity); stage r
+// takes 4·2^r.
+inline constexpr std::array<int, 4> kSortedResolveSlots = {4, 8, 16, kShortListCapacity};
 inline constexpr int kDefaultFragmentsPerPixel = 16;
 
 enum class BlendMode { Alpha, Volume };
@@ -63,7 +67,7 @@ struct RenderSettings {
   bool smoothOcclusion = true;  // its density-weighted smoothing pass
   int fragmentsPerPixel = kDefaultFragmentsPerPixel;  // volume: node pool size per low-res pixel
   long double volumePoolBytes = 0;  // volume: budget of one tile's node pool (0: the default; VolumeResolve.h)
-  // volume: the longest list resolved without arrays, 0 … kShortListCapacity (VolumeResolve.h; the
+  // volume: the longest list resolved by a sorting network, 0 … kShortListCapacity (VolumeResolve.h; the
   // image is the same up to rounding whatever it is, only the time changes)
   int volumeShortList = kShortListCapacity;
   // Particles seen from afar are rasterised as a polygon around their outline, those close by as
@@ -126,6 +130,7 @@ struct RenderStats {
   std::size_t fragments = 0;         // volume: fragments produced
   std::size_t fragmentOverflow = 0;  // volume: fragments alpha-blended for want of pool room
   std::size_t truncatedPixels = 0;   // volume: pixels with more than kMaxSegmentsPerPixel segments
+  std::size_t midListPixels = 0;     // volume: pixels with more than min(8, volumeShortList) segments
   std::size_t longListPixels = 0;    // volume: pixels with more than volumeShortList segments
   std::size_t resolveCutPixels = 0;  // volume: pixels whose resolve the GL cut short (VolumeResolve.h)
   std::size_t volumeTiles = 0;       // volume: screen tiles, each drawn and resolved on its own

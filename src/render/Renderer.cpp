@@ -173,6 +173,7 @@ struct Renderer::Impl {
         stats->fragments = c.fragments;
         stats->fragmentOverflow = c.overflow;
         stats->truncatedPixels = c.truncatedPixels;
+        stats->midListPixels = c.midLists;
         stats->longListPixels = c.longLists;
         stats->resolveCutPixels = c.cutPixels;
         stats->resolveSeconds = volume.resolveSeconds();

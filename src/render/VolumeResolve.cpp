@@ -6,6 +6,7 @@
 
 #include "core/Errors.h"
 #include "render/ShaderSources.h"
+#include "render/SortingNetwork.h"
 #include "render/Stopwatch.h"
 
 namespace cloudlut::render {
@@ -14,14 +15,36 @@ namespace {
 
 constexpr GLuint kPoolBinding = 2, kCutBinding = 3, kPixelListsBinding = 4;
 constexpr unsigned kResolveGroup = 64;  // the resolves' local_size_x
-// PixelLists (volume_fragments.glsl): touched count, long count, capacity, unused; then
-// 2 × capacity pixel words.
-constexpr std::size_t kPixelListHeaderWords = 4;
+// PixelLists (volume_fragments.glsl): a count per region and the capacity; then the regions of
+// capacity pixel words: one per sorted resolve, and the chunked resolve's.
+constexpr std::size_t kPixelListRegions = kSortedResolveSlots.size() + 1;
+constexpr std::size_t kPixelListHeaderWords = kPixelListRegions + 1;
 constexpr GLuint kHeadsUnit = 0, kColourUnit = 1;
 // The pool (volume_fragments.glsl, block Fragments): count, capacity, overflow, truncated pixels.
 constexpr std::size_t kCounterWords = 4;
 constexpr std::size_t kNodeBytes = 4 * static_cast<std::size_t>(kFragmentNodeWords);
 constexpr GLuint kListEnd = 0xffffffffu;
+
+// The #defines of the sorted resolve's stage `stage` (shaders/volume_resolve_sorted.comp.glsl): its
+// slots, sorting network and sweep written out with constant indices.
+std::string sortedResolveDefines(std::size_t stage) {
+  const int slots = kSortedResolveSlots[stage];
+  std::string load, sweep;
+  for (int k = 0; k < slots; ++k) load += "LOAD_SLOT(" + std::to_string(k) + ") ";
+  for (int k = 0; k < 2 * slots; ++k) sweep += "SWEEP(" + std::to_string(k) + ") ";
+  return glslDefine("STAGE", static_cast<int>(stage)) +
+         glslDefine("STAGES", static_cast<int>(kSortedResolveSlots.size())) + glslDefine("SLOTS", slots) +
+         glslDefine("SORTED_MAX", kShortListCapacity) + "#define LOAD_SLOTS " + load + "\n#define SORT_EVENTS " +
+         networkGlsl(oddEvenMergeSortNetwork(2 * slots)) + "\n#define SWEEP_EVENTS " + sweep + "\n";
+}
+
+// Stage r sorts 4·2^r segments (the shader finds a list's stage from its length so).
+constexpr bool stagesDouble() {
+  for (std::size_t r = 0; r < kSortedResolveSlots.size(); ++r)
+    if (kSortedResolveSlots[r] != (4 << r)) return false;
+  return kSortedResolveSlots.back() == kShortListCapacity;
+}
+static_assert(stagesDouble(), "the sorted resolve's stages hold 4, 8, 16, … segments");
 
 }  // namespace
 
@@ -63,9 +86,7 @@ VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long 
 
 VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
     : gl_(gl), budget_(budget), pool_(gl), cut_(gl), pixelLists_(gl) {
-  shortProgram_ = linkComputeProgram(
-      gl, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_short.comp.glsl"},
-      fragmentDefines());
+  sortedProgram(0);
   longProgram_ = linkComputeProgram(
       gl, {"volume_fragments.glsl", "volume_pieces.glsl", "loop_budget.glsl", "volume_resolve.comp.glsl"},
       fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel));
@@ -76,7 +97,10 @@ VolumeResolve::~VolumeResolve() {
   if (unusedHeads_) gl_.DeleteTextures(1, &unusedHeads_);
 }
 
-std::string VolumeResolve::fragmentDefines() { return glslDefine("FRAGMENT_NODE_WORDS", kFragmentNodeWords); }
+std::string VolumeResolve::fragmentDefines() {
+  return glslDefine("FRAGMENT_NODE_WORDS", kFragmentNodeWords) +
+         glslDefine("PIXEL_LIST_REGIONS", static_cast<int>(kPixelListRegions));
+}
 
 VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel, long double budgetBytes,
                                     int shortList) {
@@ -86,8 +110,8 @@ VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel
                   "volume blending of a " + std::to_string(tiling_.tileWidth) + "x" + std::to_string(tiling_.tileHeight) +
                       " tile with " + std::to_string(fragmentsPerPixel) + " fragments per pixel");
   pool_.ensure(tiling_.poolBytes);
-  // Two words per pixel of a tile (two sevenths of a pool that holds one node per pixel).
-  pixelLists_.ensure(4 * (kPixelListHeaderWords + 2 * tilePixels()));
+  // A word per pixel of a tile and region (four sevenths of a pool that holds one node per pixel).
+  pixelLists_.ensure(4 * (kPixelListHeaderWords + kPixelListRegions * tilePixels()));
   shortList_ = shortList;
   if (!heads_ || width != width_ || height != height_) {
     if (heads_) gl_.DeleteTextures(1, &heads_);
@@ -125,7 +149,8 @@ void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawT
     pending.pop_back();
     const GLuint counters[kCounterWords] = {0, static_cast<GLuint>(capacity), 0, 0};
     pool_.write(0, sizeof counters, counters);
-    const GLuint listHeader[kPixelListHeaderWords] = {0, 0, static_cast<GLuint>(tilePixels()), 0};
+    GLuint listHeader[kPixelListHeaderWords] = {};  // the region counts, then the capacity
+    listHeader[kPixelListRegions] = static_cast<GLuint>(tilePixels());
     pixelLists_.write(0, sizeof listHeader, listHeader);
     pixelLists_.bind(kPixelListsBinding);
     fullBarrier(gl_);
@@ -181,6 +206,14 @@ void VolumeResolve::bindUnused() {
   gl_.BindImageTexture(kHeadsUnit, unusedHeads_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
 }
 
+const GlProgram& VolumeResolve::sortedProgram(std::size_t stage) {
+  GlProgram& program = sortedPrograms_[stage];
+  if (!program.id())
+    program = linkComputeProgram(gl_, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_sorted.comp.glsl"},
+                                 fragmentDefines() + sortedResolveDefines(stage));
+  return program;
+}
+
 std::size_t VolumeResolve::tilePixels() const {
   return static_cast<std::size_t>(tiling_.tileWidth) * static_cast<std::size_t>(tiling_.tileHeight);
 }
@@ -194,22 +227,25 @@ void VolumeResolve::resolveTile(GLuint colourTexture) {
   pool_.bind(kPoolBinding);
   gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
   gl_.BindImageTexture(kColourUnit, colourTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  GLuint counts[2] = {0, 0};  // pixels with a list, pixels with a long list
+  // Region 0: the pixels the particle pass listed. The first sorted resolve takes the lists of up
+  // to 4 segments and hands each longer one to the region of the stage that fits it; each later
+  // stage resolves its region; the chunked resolve takes the last.
+  GLuint counts[kPixelListRegions] = {};
   pixelLists_.read(0, sizeof counts, counts);
-
-  // The pixels the particle pass listed: the short lists resolved, the long ones queued.
-  if (counts[0] > 0) {
-    gl_.UseProgram(shortProgram_.id());
-    gl_.Uniform1i(shortProgram_.uniform("uShortList"), shortList_);
-    gl_.DispatchCompute(groupsFor(counts[0], kResolveGroup), 1, 1);
+  for (std::size_t i = 0; i < kSortedResolveSlots.size(); ++i) {
+    if (counts[i] == 0) continue;
+    const GlProgram& program = sortedProgram(i);
+    gl_.UseProgram(program.id());
+    if (i == 0) gl_.Uniform1i(program.uniform("uShortList"), shortList_);
+    gl_.DispatchCompute(groupsFor(counts[i], kResolveGroup), 1, 1);
     fullBarrier(gl_);
-    pixelLists_.read(0, sizeof counts, counts);
+    if (i == 0) pixelLists_.read(0, sizeof counts, counts);
   }
-  // The queued pixels.
-  if (counts[1] > 0) {
+  const GLuint chunked = counts[kPixelListRegions - 1];
+  if (chunked > 0) {
     gl_.UseProgram(longProgram_.id());
     gl_.Uniform1i(longProgram_.uniform("uProbePasses"), kLoopProbePasses);
-    gl_.DispatchCompute(groupsFor(counts[1], kResolveGroup), 1, 1);
+    gl_.DispatchCompute(groupsFor(chunked, kResolveGroup), 1, 1);
     fullBarrier(gl_);
   }
   gl_.Finish();
@@ -217,7 +253,8 @@ void VolumeResolve::resolveTile(GLuint colourTexture) {
   GLuint cut = 0;
   cut_.read(0, sizeof cut, &cut);
   counts_.cutPixels += cut;
-  counts_.longLists += counts[1];
+  for (std::size_t r = 2; r < kPixelListRegions; ++r) counts_.midLists += counts[r];  // stages of 16 and up
+  counts_.longLists += chunked;
 }
 
 }  // namespace cloudlut::render

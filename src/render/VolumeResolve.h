@@ -10,14 +10,16 @@
 // are composited behind them.
 //
 // The particle pass lists the pixels whose list it starts, and the resolves visit only those.
-// Two programs: lists of at most RenderSettings::volumeShortList segments (most pixels) are
-// resolved in one sweep that finds each next entry or exit by walking the list again
-// (shaders/volume_resolve_short.comp.glsl, no arrays); the longer ones are queued and resolved by
-// sorting them in chunks of kMaxSegmentsPerPixel, each chunk composited exactly and the chunks
-// front to back (shaders/volume_resolve.comp.glsl). llvmpipe keeps a shader's arrays in memory
-// and pays for them in every invocation of the program, whether it touches them or not: one
-// program over every pixel of the tile made the resolve take 150 of a single particle's 210 ms
-// per frame at 1280×720.
+// Five programs. The first counts each listed pixel's segments and resolves the lists of up to 4;
+// it hands each longer list to the program for up to 8, 16 or 32 segments (kSortedResolveSlots;
+// at most RenderSettings::volumeShortList), or to the chunked one. Up to 32 they are sorted by a
+// sorting network written out with constant indices (render/SortingNetwork.h,
+// shaders/volume_resolve_sorted.comp.glsl), so their events stay in registers; the longer ones
+// are sorted in chunks of kMaxSegmentsPerPixel in arrays, each chunk composited exactly and the
+// chunks front to back (shaders/volume_resolve.comp.glsl). llvmpipe keeps a shader's dynamically
+// indexed arrays in memory and pays for them in every invocation of the program, whether it
+// touches them or not: one program over every pixel of the tile made the resolve take 150 of a
+// single particle's 210 ms per frame at 1280×720.
 //
 // Tiles: the node pool of one shader storage block holds the lists of one screen tile at a time.
 // The buffer is cut into bands (or, when one row does not fit, runs of pixels) of at most
@@ -35,6 +37,7 @@
 // only one) and counts them apart (Counts::cutPixels, RenderStats::resolveCutPixels; the count
 // takes in every pixel of an invocation that ran out, so it may exceed the pixels harmed);
 // `render` warns. A GL without the limit never cuts.
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -77,12 +80,13 @@ class VolumeResolve {
   VolumeResolve(const VolumeResolve&) = delete;
   VolumeResolve& operator=(const VolumeResolve&) = delete;
 
-  // The #defines of the programs that write or read the lists (FRAGMENT_NODE_WORDS).
+  // The #defines of the programs that write or read the lists (FRAGMENT_NODE_WORDS,
+  // PIXEL_LIST_REGIONS).
   static std::string fragmentDefines();
 
   // Plans the tiles of a width × height buffer for a pool budget of `budgetBytes` (capped by the
   // storage budget; 0: kDefaultVolumePoolBytes), sizes the pool for one tile, empties the lists.
-  // Lists of up to shortList segments go to the array-free resolve.
+  // Lists of up to shortList segments (0 … kShortListCapacity) go to the sorted resolves.
   VolumeTiling prepare(int width, int height, int fragmentsPerPixel, long double budgetBytes, int shortList);
   // For each tile of the prepared tiling: empties the pool, binds it and the heads for the
   // particle pass (pool at binding 2, pixel lists at binding 4, heads at image unit 0), scissors
@@ -100,7 +104,8 @@ class VolumeResolve {
     std::size_t fragments = 0;        // produced
     std::size_t overflow = 0;         // alpha-blended for want of pool room
     std::size_t truncatedPixels = 0;  // pixels with more than kMaxSegmentsPerPixel segments
-    std::size_t longLists = 0;        // pixels with more than the short list's segments
+    std::size_t midLists = 0;         // pixels with more than min(8, short list) segments (stage 2 on)
+    std::size_t longLists = 0;        // pixels with more than the short list's segments (chunked)
     std::size_t cutPixels = 0;        // pixels whose resolve the GL cut short (loop budget; header)
     std::size_t tiles = 0;            // tiles resolved (the plan's, and the parts of split ones)
     std::size_t redrawnTiles = 0;     // tiles drawn, found over the pool's room and split in two
@@ -113,7 +118,10 @@ class VolumeResolve {
  private:
   const GlFunctions& gl_;
   const StorageBudget& budget_;
-  GlProgram shortProgram_, longProgram_;
+  // Linked when a frame first needs them: llvmpipe compiles the straight-line network of 32
+  // segments (543 compare-exchanges) in seconds, once per machine with its shader cache.
+  std::array<GlProgram, kSortedResolveSlots.size()> sortedPrograms_;
+  GlProgram longProgram_;
   StorageBuffer pool_;
   StorageBuffer cut_;        // the resolves' count of pixels the GL cut short (binding 3)
   StorageBuffer pixelLists_;  // the pixels with a list and those with a long one (binding 4, volume_fragments.glsl)
@@ -124,6 +132,7 @@ class VolumeResolve {
   Counts counts_;
   double resolveSeconds_ = 0;
 
+  const GlProgram& sortedProgram(std::size_t stage);  // linked on first use
   std::size_t tilePixels() const;  // of the plan's tile: the most any drawn tile has
   void resolveTile(GLuint colourTexture);
 };

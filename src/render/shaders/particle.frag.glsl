@@ -203,8 +203,8 @@ void main() {
     if (node < fragCapacity) {
       uint next = imageAtomicExchange(uHeads, ivec2(gl_FragCoord.xy), node);
       storeFragment(node, tNear, tExit, tau, radiance, next);
-      if (next == FRAGMENT_LIST_END && touchedCount < pixelCapacity)  // the pixel's first: list it
-        pixels[atomicAdd(touchedCount, 1u)] = packPixel(ivec2(gl_FragCoord.xy));
+      if (next == FRAGMENT_LIST_END && regionCount[0] < pixelCapacity)  // the pixel's first: list it
+        pixels[atomicAdd(regionCount[0], 1u)] = packPixel(ivec2(gl_FragCoord.xy));
       oColor = vec4(0.0, 0.0, 0.0, 1.0);  // stored: composited by the resolves (render/VolumeResolve.h)
     } else {
       atomicAdd(fragOverflow, 1u);  // no room: alpha-blended into the colour image (fallback)

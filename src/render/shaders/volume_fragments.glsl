@@ -45,15 +45,14 @@ vec3 fragmentRadiance(uint node) {
 }
 uint fragmentNext(uint node) { return nodes[node * uint(FRAGMENT_NODE_WORDS) + 6u]; }
 
-// Two lists of pixels of the tile, packed x | y << 16: the pixels whose list the particle pass
-// started (pixels[0 … touchedCount), one entry per pixel with a list), and those the short
-// resolve leaves to the long one (pixels[pixelCapacity …], longCount of them). pixelCapacity is
-// the tile's pixel count, set with the counters before each draw.
+// PIXEL_LIST_REGIONS lists of pixels of the tile, packed x | y << 16, in regions of pixelCapacity
+// words (the tile's pixel count, set with the counters before each draw): region 0, the pixels
+// whose list the particle pass started (one entry per pixel with a list); each next region, those
+// the sorted resolve of the region before left for a longer one; the last, those left to the
+// chunked resolve (render/VolumeResolve.h). regionCount[r] entries of region r are used.
 layout(std430, binding = 4) buffer PixelLists {
-  uint touchedCount;
-  uint longCount;
+  uint regionCount[PIXEL_LIST_REGIONS];
   uint pixelCapacity;
-  uint pixelListsUnused;
   uint pixels[];
 };
 uint packPixel(ivec2 px) { return uint(px.x) | (uint(px.y) << 16); }
