@@ -217,9 +217,8 @@ int runRender(int argc, char** argv) {
                     "%zu overflowed (alpha-blended), %zu pixels over %d segments, %zu over %d (chunked), %zu over %d "
                     "(more than one chunk), resolve %.1f ms\n",
                     stats.volumeTiles, stats.volumeRedrawnTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0,
-                    stats.fragments,
-                    stats.fragmentOverflow, stats.midListPixels, std::min(render::kSortedResolveSlots[1], settings.volumeShortList),
-                    stats.longListPixels, settings.volumeShortList, stats.truncatedPixels, render::kMaxSegmentsPerPixel,
+                    stats.fragments, stats.fragmentOverflow, stats.midListPixels,
+                    std::min(render::kSortedResolveSlots[1], settings.volumeShortList), stats.longListPixels, settings.volumeShortList, stats.truncatedPixels, render::kMaxSegmentsPerPixel,
                     1e3 * stats.resolveSeconds);
       if (stats.resolveCutPixels > 0)
         std::fprintf(stderr,

@@ -67,8 +67,8 @@ struct RenderSettings {
   bool smoothOcclusion = true;  // its density-weighted smoothing pass
   int fragmentsPerPixel = kDefaultFragmentsPerPixel;  // volume: node pool size per low-res pixel
   long double volumePoolBytes = 0;  // volume: budget of one tile's node pool (0: the default; VolumeResolve.h)
-  // volume: the longest list resolved by a sorting network, 0 … kShortListCapacity (VolumeResolve.h; the
-  // image is the same up to rounding whatever it is, only the time changes)
+  // volume: the longest list resolved by a sorting network, 0 … kShortListCapacity
+  // (VolumeResolve.h; the image is the same up to rounding whatever it is, only the time changes)
   int volumeShortList = kShortListCapacity;
   // Particles seen from afar are rasterised as a polygon around their outline, those close by as
   // their bounding box (shaders/particle.vert.glsl); false: every particle as its box. The image

@@ -86,7 +86,7 @@ VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long 
 
 VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
     : gl_(gl), budget_(budget), pool_(gl), cut_(gl), pixelLists_(gl) {
-  sortedProgram(0);
+  sortedProgram(0);  // every frame with a list needs the first stage; the others link on first use
   longProgram_ = linkComputeProgram(
       gl, {"volume_fragments.glsl", "volume_pieces.glsl", "loop_budget.glsl", "volume_resolve.comp.glsl"},
       fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel));
@@ -209,8 +209,9 @@ void VolumeResolve::bindUnused() {
 const GlProgram& VolumeResolve::sortedProgram(std::size_t stage) {
   GlProgram& program = sortedPrograms_[stage];
   if (!program.id())
-    program = linkComputeProgram(gl_, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_sorted.comp.glsl"},
-                                 fragmentDefines() + sortedResolveDefines(stage));
+    program =
+        linkComputeProgram(gl_, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_sorted.comp.glsl"},
+                           fragmentDefines() + sortedResolveDefines(stage));
   return program;
 }
 
@@ -253,7 +254,8 @@ void VolumeResolve::resolveTile(GLuint colourTexture) {
   GLuint cut = 0;
   cut_.read(0, sizeof cut, &cut);
   counts_.cutPixels += cut;
-  for (std::size_t r = 2; r < kPixelListRegions; ++r) counts_.midLists += counts[r];  // stages of 16 and up
+  // Over 8 segments: the regions after the 8-segment stage's, the chunked one included.
+  for (std::size_t r = 2; r < kPixelListRegions; ++r) counts_.midLists += counts[r];
   counts_.longLists += chunked;
 }
 

@@ -124,7 +124,7 @@ class VolumeResolve {
   GlProgram longProgram_;
   StorageBuffer pool_;
   StorageBuffer cut_;        // the resolves' count of pixels the GL cut short (binding 3)
-  StorageBuffer pixelLists_;  // the pixels with a list and those with a long one (binding 4, volume_fragments.glsl)
+  StorageBuffer pixelLists_;  // the pixels with a list, by region (binding 4, volume_fragments.glsl)
   int shortList_ = kShortListCapacity;
   GLuint heads_ = 0, unusedHeads_ = 0;
   int width_ = 0, height_ = 0;

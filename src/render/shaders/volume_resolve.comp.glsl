@@ -9,8 +9,8 @@
 // and the pieces are composited front to back (eqs. 16–17; volume_pieces.glsl). Non-overlapping
 // segments reduce to alpha blending; the transmittance is exactly e^{−Σ τ_i} in any case.
 //
-// One invocation per pixel that volume_resolve_sorted.comp.glsl left in PixelLists' last region (more
-// than RenderSettings::volumeShortList segments), in work groups of 64. The arrays below are the
+// One invocation per pixel that volume_resolve_sorted.comp.glsl left in PixelLists' last region
+// (more than RenderSettings::volumeShortList segments), in work groups of 64. The arrays below are the
 // invocation's own: a GL that keeps them in memory (llvmpipe) pays for them in every invocation
 // of a program that declares them, used or not, which is why the short lists are resolved by
 // another program.
