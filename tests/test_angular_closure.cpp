@@ -127,6 +127,12 @@ TEST_CASE("angular closure: the record's rules and the interpolation", "[closure
   const auto back = angularClosureFromJson(angularClosureToJson(c), problem);
   REQUIRE(back);
   CHECK(back->values == c.values);
+  CHECK_FALSE(back->ownCoreShadow);
+  c.ownCoreShadow = true;
+  CHECK(angularClosureFromJson(angularClosureToJson(c), problem)->ownCoreShadow);
+  nlohmann::json older = angularClosureToJson(c);
+  older.erase("own_core_shadow");  // a set baked before the field: K without the core shadow
+  CHECK_FALSE(angularClosureFromJson(older, problem)->ownCoreShadow);
   // nodes at ρ = 1/2 and 1, bin centres at μ = −½ and ½; held beyond them
   CHECK(angularClosureAt(c, 0.5f, -0.5f) == Approx(0.5f));
   CHECK(angularClosureAt(c, 1.0f, 0.5f) == Approx(2.0f));
@@ -137,7 +143,8 @@ TEST_CASE("angular closure: the record's rules and the interpolation", "[closure
     nlohmann::json value;
   } bad[] = {{"values", {1.0, 1.0, 1.0}},         {"values", {1.0, 1.0, 1.0, 9.0}}, {"values", {1.0, 1.0, 1.0, "x"}},
              {"density_nodes", 17},                {"mu_bins", 0.5},                 {"log2_rho_step", 0.0},
-             {"log2_rho_first", nullptr},          {"relative_errors", {-1.0, 0, 0, 0}}};
+             {"log2_rho_first", nullptr},          {"relative_errors", {-1.0, 0, 0, 0}},
+             {"own_core_shadow", 1}};
   for (const auto& b : bad) {
     INFO(b.field << " = " << b.value.dump());
     nlohmann::json record = angularClosureToJson(c);

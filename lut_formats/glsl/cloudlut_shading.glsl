@@ -139,6 +139,42 @@ CLOUDLUT_FN float diffuseTransmittance(float tau, float g) {
   return 1.0f / (1.0f + 0.75f * (1.0f - g) * max(tau, 0.0f));
 }
 
+// Distance (unit-sphere units) from a point x of the unit sphere to its surface along the unit
+// direction d: the larger root of |x + t·d| = 1; 0 for a point outside that has passed it.
+CLOUDLUT_FN float unitSphereExitDistance(vec3 x, vec3 d) {
+  float b = dot(x, d), c = dot(x, x) - 1.0f;
+  return max(-b + sqrt(max(b * b - c, 0.0f)), 0.0f);
+}
+
+// A particle's own optical depth toward the sun (dimensionless) at the point a share s of the
+// way along its sun chord, counted from the chord's sunward end: the chord's optical depth
+// tauChord laid as a linear ramp from its first matter to its last matter (shares of the chord,
+// the optical-depth table's channels 1 and 2), as the sun volume lays it (sunVolumeRampAt).
+CLOUDLUT_FN float ownSunRamp(float tauChord, float firstMatter, float lastMatter, float s) {
+  return tauChord * clamp((s - firstMatter) / max(lastMatter - firstMatter, 1e-6f), 0.0f, 1.0f);
+}
+
+// The same for the multiple table's homogeneous sphere (density ρT̄, the view chord's mean
+// density; optical radius σ·ρT̄) in place of the particle, from the point x of the unit sphere
+// (particle space) to the sphere's surface along l, toward the sun (unit): ρT̄·σ·distance.
+CLOUDLUT_FN float homogeneousOwnSunDepth(vec3 x, vec3 l, float rhoChord, float sigma) {
+  return rhoChord * sigma * unitSphereExitDistance(x, l);
+}
+
+// The particle's own core shadow on its multiple term (dimensionless, in (0, 1];
+// docs/LIGHTING.md, "The particle's own core shadow"). The own term reads the homogeneous sphere
+// of the chord's mean density, which at the chord's mean scattering point x̄ lies under
+// tauHomogeneous of its own matter toward the sun (homogeneousOwnSunDepth); the particle itself
+// lies under tauOwn there (ownSunRamp, the sun volume's own ramp). Where the particle's core
+// shadows x̄ more than the sphere would (the far rim of a particle seen toward the sun), the
+// term is darkened by the ratio of the sunlight through the two, max(e^{−τ}, T_d(τ)) as for
+// the neighbours' shadow; it is never brightened.
+CLOUDLUT_FN float ownCoreShadow(float tauOwn, float tauHomogeneous, float g) {
+  float own = max(exp(-max(tauOwn, 0.0f)), diffuseTransmittance(tauOwn, g));
+  float homogeneous = max(exp(-max(tauHomogeneous, 0.0f)), diffuseTransmittance(tauHomogeneous, g));
+  return min(own / homogeneous, 1.0f);
+}
+
 // The share of the sun's irradiance (dimensionless) that gets through τ of cloud toward the
 // sun, direct and scattered together: the Eddington total transmittance of a conservative slab
 // of optical thickness τ lit at normal incidence (the slab's normal taken along the sun),

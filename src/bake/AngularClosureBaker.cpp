@@ -9,6 +9,9 @@
 #include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
 
+#include "core/Glsl.h"
+#include "core/LastMatter.h"
+#include "core/OwnSunDepth.h"
 #include "core/PhaseSampling.h"
 #include "core/TableLookup.h"
 
@@ -80,12 +83,16 @@ void tracePhotons(Tally& t, const ReferenceParticle& particle, double sigma, con
 }
 
 // The own-term model's power by exit direction −v: per μ bin, the mean over the view directions v
-// in it of Σ over the chords of the disc facing v of (1 − e^{−τ}) J̄M(S, v, l, ρT̄) dA
-// (particle.frag.glsl's own term without its sunlight factor, 1 for an isolated particle), times
+// in it of Σ over the chords of the disc facing v of (1 − e^{−τ}) J̄M(S, v, l, ρT̄) · C dA, with C
+// the own core shadow at the chord's mean scattering point x̄ (ownCoreShadow: the particle's own
+// τ toward the sun there, ownSunOpticalDepth, against the homogeneous sphere's; later-phase
+// asymmetry g) (particle.frag.glsl's own term without its sunlight factor, 1 for an isolated
+// particle), times
 // the bin's exact solid angle 4π/bins (a bin's count of Fibonacci directions varies with l by
 // ±10%, which summing them would pass into K).
 void integrateModel(Tally& t, const Table4D& od, const Table4D& multiple, float rho, const glm::dvec3& l,
-                    const AngularClosureSettings& s) {
+                    float g, const AngularClosureSettings& s) {
+  const float sigma = static_cast<float>(unitOpticalRadius(od));
   const ScatteringStorage storage = scatteringStorage(multiple);
   const float rhoMin = std::exp2(scatteringAxesRecord(multiple).x);
   const int n = s.discSide;
@@ -108,7 +115,14 @@ void integrateModel(Tally& t, const Table4D& od, const Table4D& multiple, float 
         const float rhoChord = rho * chord.meanDensity;
         const float stored = sampleScattering(multiple, S, glm::vec3(v), lf, std::max(rhoChord, rhoMin)) *
                              std::min(rhoChord / rhoMin, 1.0f);
-        sum += scatteringFromStored(storage, stored, chord.opticalDepth);
+        // the chord's mean scattering point x̄ (particle.frag.glsl: first matter, then the
+        // e^{−τt}-weighted share of the stretch to the last matter)
+        const float first = chord.firstMatter, last = lookupLastMatter(od, S, glm::vec3(v));
+        const glm::vec3 x = S + (first + (last - first) * glsl::meanScatteringFraction(chord.opticalDepth)) *
+                                    chord.chordLength * glm::vec3(v);
+        const float shadow = !s.ownCoreShadow ? 1.0f : glsl::ownCoreShadow(ownSunOpticalDepth(od, x, lf, rho),
+                                                 glsl::homogeneousOwnSunDepth(x, lf, rhoChord, sigma), g);
+        sum += shadow * scatteringFromStored(storage, stored, chord.opticalDepth);
       }
     const auto b = static_cast<std::size_t>(muBin(-glm::dot(v, l), s.muBins));
     sums[b] += sum * dA;
@@ -128,6 +142,7 @@ std::optional<AngularClosure> computeAngularClosure(const Table4D& od, const Tab
       s.photonsPerDirection < 1 || s.viewDirections < 1 || s.discSide < 1 || !(s.log2RhoStep > 0.0f))
     throw std::invalid_argument("angular closure: settings out of range");
   const double sigma = unitOpticalRadius(od);
+  const float g = phaseMeanCosine(later);
   const long long maxOrder = maxOrderOf(multiple);
   const auto rhoOf = [&](int node) { return std::exp2(s.log2RhoFirst + s.log2RhoStep * static_cast<float>(node)); };
   int nodes = 0;
@@ -146,7 +161,7 @@ std::optional<AngularClosure> computeAngularClosure(const Table4D& od, const Tab
     t.model.assign(s.muBins, 0.0);
     tracePhotons(t, particle, sigma * rho, l, first, later, s.photonsPerDirection, maxOrder, s.seed,
                  static_cast<std::uint64_t>(task), s.muBins);
-    integrateModel(t, od, multiple, rho, l, s);
+    integrateModel(t, od, multiple, rho, l, g, s);
     reportProgress(progress, "angular closure", static_cast<double>(++done) / tasks);
   });
   AngularClosure c;
@@ -155,6 +170,7 @@ std::optional<AngularClosure> computeAngularClosure(const Table4D& od, const Tab
   c.log2RhoStep = s.log2RhoStep;
   c.densityNodes = nodes;
   c.muBins = s.muBins;
+  c.ownCoreShadow = s.ownCoreShadow;
   for (int node = 0; node < nodes; ++node)
     for (int b = 0; b < s.muBins; ++b) {
       // sums in task order: the same whatever the thread count

@@ -11,8 +11,10 @@
 // The closure K(ρ, μ) is, per density node ρ and exit-direction bin μ = ω_out · l, the ratio of
 //   the power of orders 2 … N leaving the reference particle, from forward Monte Carlo through
 //   its own density (delta tracking; first and later phase functions of the tables), to
-//   the power the own-term model sends out: ∫ dω ∫ dA (1 − e^{−τ}) J̄M(S, v, l, ρT̄) over the view
-//   directions v with −v · l in the bin and the chords of the disc facing v.
+//   the power the own-term model sends out: ∫ dω ∫ dA (1 − e^{−τ}) J̄M(S, v, l, ρT̄) · C over the
+//   view directions v with −v · l in the bin and the chords of the disc facing v, C the own core
+//   shadow at the chord's mean scattering point (ownCoreShadow, cloudlut_shading.glsl; 1 with
+//   AngularClosureSettings::ownCoreShadow false).
 // Both per unit sun irradiance on the unit sphere (powers in unit-sphere area units), averaged
 // over a fixed set of sun directions in the particle's frame. The renderer multiplies the own
 // term by K at the particle's density and its exit direction (−v · l).
@@ -37,6 +39,8 @@ struct AngularClosureSettings {
   long long photonsPerDirection = 16000;  // standard errors 1–3% per bin
   int viewDirections = 300;         // Fibonacci view directions of the model's integral
   int discSide = 32;                // chords per side of the disc facing each view direction
+  bool ownCoreShadow = true;        // the model's own term darkened by its core shadow (ownCoreShadow);
+                                    // false: the closure of the term without it (sets baked before it)
   std::uint64_t seed = 1;
 };
 

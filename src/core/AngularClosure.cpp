@@ -20,7 +20,7 @@ std::vector<double> rounded(const std::vector<float>& v) {
 
 nlohmann::json angularClosureToJson(const AngularClosure& c) {
   return {{"log2_rho_first", c.log2RhoFirst}, {"log2_rho_step", c.log2RhoStep},     {"density_nodes", c.densityNodes},
-          {"mu_bins", c.muBins},               {"values", rounded(c.values)}, {"relative_errors", rounded(c.relativeErrors)}};
+          {"mu_bins", c.muBins},               {"values", rounded(c.values)}, {"relative_errors", rounded(c.relativeErrors)}, {"own_core_shadow", c.ownCoreShadow}};
 }
 
 std::optional<AngularClosure> angularClosureFromJson(const nlohmann::json& record, std::string& problem) {
@@ -65,6 +65,10 @@ std::optional<AngularClosure> angularClosureFromJson(const nlohmann::json& recor
         return bad("relative_errors: expected numbers ≥ 0");
       c.relativeErrors.push_back(v.get<float>());
     }
+  }
+  if (record.contains("own_core_shadow")) {
+    if (!record["own_core_shadow"].is_boolean()) return bad("own_core_shadow: expected true or false");
+    c.ownCoreShadow = record["own_core_shadow"].get<bool>();
   }
   return c;
 }

@@ -23,10 +23,14 @@ struct AngularClosure {
   int densityNodes = 1, muBins = 1;   // each 1 … kMaxAngularClosureAxis
   std::vector<float> values{1.0f};    // K (dimensionless), [node · muBins + bin], each in [1/4, 4]
   std::vector<float> relativeErrors;  // the Monte Carlo's relative standard error of each K, or empty
+  // K closes the own term darkened by its core shadow (ownCoreShadow, cloudlut_shading.glsl), so
+  // the renderer applies that factor; false for sets baked before it, whose K closes the term
+  // without it.
+  bool ownCoreShadow = false;
 };
 
 // The record: {"log2_rho_first", "log2_rho_step", "density_nodes", "mu_bins", "values",
-// "relative_errors"}.
+// "relative_errors", "own_core_shadow"} (the last a boolean, false when absent).
 nlohmann::json angularClosureToJson(const AngularClosure& closure);
 
 // The closure a record describes, or nullopt with `problem` saying which field is wrong and why.

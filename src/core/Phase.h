@@ -35,6 +35,11 @@ std::string describePhase(const Phase& phase);
 // cloudlut_phase.glsl (seed eq. 7 for Cornette–Shanks).
 float phaseValue(const Phase& phase, float mu);
 
+// The phase function's mean cosine g = ∫ μ P(μ) dω (dimensionless; P normalised over the sphere),
+// clamped to [0, 0.99]: the asymmetry the two-stream terms of the shading take
+// (diffuseTransmittance, cloudlut_shading.glsl).
+float phaseMeanCosine(const Phase& phase);
+
 // The table JSON form {"kind": integer, "param": number, "name": string} (lut_formats/FORMAT.md,
 // the scattering tables' first_phase / later_phase).
 nlohmann::json phaseToJson(const Phase& phase);

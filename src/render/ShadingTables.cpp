@@ -24,19 +24,6 @@ const Table4D& requireTable(const io::LutSet& luts, const std::string& name) {
   return it->second.table;
 }
 
-// ∫ μ P(μ) dω = 2π ∫_{-1}^{1} μ P(μ) dμ (midpoint rule in θ on 4096 steps: the forward peaks of
-// the cloud phase functions are a degree wide).
-float meanCosine(const Phase& phase) {
-  constexpr int kSteps = 4096;
-  double sum = 0.0;
-  for (int i = 0; i < kSteps; ++i) {
-    const double theta = (i + 0.5) * 3.14159265358979323846 / kSteps;
-    const double mu = std::cos(theta);
-    sum += mu * phaseValue(phase, static_cast<float>(mu)) * std::sin(theta);
-  }
-  return static_cast<float>(2.0 * 3.14159265358979323846 * sum * 3.14159265358979323846 / kSteps);
-}
-
 }  // namespace
 
 ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, const io::LutSet& set)
@@ -71,7 +58,7 @@ ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, co
   const Phase later = phaseOf(lm, "later_phase", defaults::kLaterPhase);
   firstPhaseKind_ = glslKind(first.kind);
   firstPhaseParam_ = first.param;
-  laterAsymmetry_ = std::clamp(meanCosine(later), 0.0f, 0.99f);
+  laterAsymmetry_ = phaseMeanCosine(later);
   if (lm.parameters().contains("angular_closure")) readAngularClosure(lm.parameters()["angular_closure"]);
 
   try {
@@ -136,7 +123,7 @@ void ShadingTables::bind(const ProgramUniforms& uniforms) const {
   uniforms.set("uFirstPhaseParam", firstPhaseParam_);
   uniforms.set("uLaterAsymmetry", laterAsymmetry_);
   uniforms.set("uAngularClosureRho", glm::vec4(closure_.log2RhoFirst, closure_.log2RhoStep, 0.0f, 0.0f));
-  uniforms.set("uAngularClosureDims", glm::ivec3(closure_.densityNodes, closure_.muBins, 0));
+  uniforms.set("uAngularClosureDims", glm::ivec3(closure_.densityNodes, closure_.muBins, closure_.ownCoreShadow ? 1 : 0));
   uniforms.set("uAngularClosure", closure_.values);
 }
 

@@ -31,8 +31,10 @@ struct RenderFixture {
   // the default noise particle at 32×16×32×16 and the default-resolution scattering tables of
   // `orders` (0 = converged; BakedFixtures caches the bake across tests). With `closure`, the
   // multiple table carries its angular closure (bake/AngularClosureBaker.h) as `cloudlut bake`
-  // attaches it, at `closurePhotons` photons per sun direction.
-  static RenderFixture defaultMedium(int orders = 0, bool closure = false, long long closurePhotons = 8000) {
+  // attaches it, at `closurePhotons` photons per sun direction, for the own term with its core
+  // shadow or, with `coreShadow` false, without it (the model before it).
+  static RenderFixture defaultMedium(int orders = 0, bool closure = false, long long closurePhotons = 8000,
+                                     bool coreShadow = true) {
     return RenderFixture([=](const std::filesystem::path& dir) {
       const Medium medium;
       bake::OpticalDepthSettings ods;
@@ -45,6 +47,7 @@ struct RenderFixture {
       if (closure) {
         bake::AngularClosureSettings s;
         s.photonsPerDirection = closurePhotons;
+        s.ownCoreShadow = coreShadow;
         const auto k = bake::computeAngularClosure(od, multiple, particle, medium.first, medium.later, s);
         if (!k) throw std::runtime_error("the default medium has no angular closure");
         multiple.parameters()["angular_closure"] = angularClosureToJson(*k);

@@ -49,6 +49,7 @@ float multipleSourceAt(vec3 S, vec3 v, vec3 l, float rho) {
 // ω_out · l over the power the own-term model sends there. Nodes uAngularClosureRho.x +
 // i·uAngularClosureRho.y in log2 ρ (i < uAngularClosureDims.x), uniform bins of μ over [−1, 1]
 // (uAngularClosureDims.y); kMaxAngularClosureAxis² values (core/AngularClosure.h).
+// uAngularClosureDims.z is 1 when K closes the own term with its core shadow (ownCoreShadow).
 uniform vec4 uAngularClosureRho;
 uniform ivec3 uAngularClosureDims;
 uniform float uAngularClosure[256];
@@ -147,7 +148,8 @@ void main() {
   }
   // Multiple scattering, per unit sun irradiance, already lit (the sunlight factor included).
   //   seed:  the mean source of the particle's sphere at ρ, times the sunlight;
-  //   cloud: the particle's sphere at the ray's density ρ·T̄, closed per exit direction, lit by
+  //   cloud: the particle's sphere at the ray's density ρ·T̄, closed per exit direction, darkened
+//          by the particle's own core shadow, lit by
   //          the larger of the direct and the diffuse transmittance through the cloud toward the
   //          sun, blended with the cloud sphere of the local cloud around the mean scattering
   //          point (localCloudAlongSun, cloudSphereEntry, cloudSphereDensity), lit the same way
@@ -164,6 +166,13 @@ void main() {
       // (angularClosure at its exit direction −v·l)
       float own = lit * multipleScatteringFromTable(multipleSourceAt(S, v, l, rho * od.x), tau) *
                   angularClosure(rho, -dot(dir, uSunDirection));
+      // darkened where the particle's core shadows x̄ more than the table's sphere would
+      // (ownCoreShadow; only with a closure baked for it, uAngularClosureDims.z)
+      if (uSunlightVolume != 0 && uAngularClosureDims.z != 0)
+        own *= ownCoreShadow(sunTau.y - sunTau.x,
+                             homogeneousOwnSunDepth(toParticle * (xMean - p.centerDensity.xyz), l, rho * od.x,
+                                                    uUnitOpticalRadius),
+                             uLaterAsymmetry);
       // the cloud sphere: the local cloud's column (localCloudAlongSun), less the particle's own
       // chords, weighs it (less 0.01: a cloud that thin is none, and reads at three points
       // differ by the volume's fixed-point rounding, ~10⁻³); the cloud beyond the window toward

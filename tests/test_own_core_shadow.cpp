@@ -1,0 +1,117 @@
+// The own term's core shadow (docs/LIGHTING.md, "The particle's own core shadow"): the shared
+// functions of cloudlut_shading.glsl against their definitions computed here, and the particle's
+// own optical depth toward the sun from the optical-depth table (core/OwnSunDepth.h) against a
+// direct integration of the particle's density along the sun ray.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "bake/OpticalDepthBaker.h"
+#include "core/Glsl.h"
+#include "core/Medium.h"
+#include "core/OwnSunDepth.h"
+#include "core/ReferenceParticle.h"
+#include "core/TableLookup.h"
+
+using namespace cloudlut;
+
+namespace {
+
+// Distance from x inside the unit sphere to its surface along unit d, by bisection on |x + t·d|.
+double exitByBisection(const glm::dvec3& x, const glm::dvec3& d) {
+  double lo = 0.0, hi = 2.0;
+  for (int i = 0; i < 80; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (glm::dot(x + mid * d, x + mid * d) < 1.0 ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// max(e^{−τ}, 1/(1 + ¾(1 − g)τ)): the direct or the two-stream diffuse transmittance.
+double sunlight(double tau, double g) { return std::max(std::exp(-tau), 1.0 / (1.0 + 0.75 * (1.0 - g) * tau)); }
+
+Table4D depthTable(DensityModel model) {
+  bake::OpticalDepthSettings ods;
+  ods.dims = {64, 32, 64, 32};
+  return bake::bakeOpticalDepth(ReferenceParticle(model, 1), ods);
+}
+
+// ∫ σ·ρ·ρ̂(x + t·l) dt from x to the sphere's surface toward the sun (midpoint rule).
+double integratedToSun(const ReferenceParticle& particle, double sigma, float rho, const glm::vec3& x,
+                       const glm::vec3& l) {
+  const double length = exitByBisection(glm::dvec3(x), glm::dvec3(l));
+  constexpr int kSteps = 4000;
+  double sum = 0.0;
+  for (int i = 0; i < kSteps; ++i)
+    sum += particle.density(x + static_cast<float>((i + 0.5) * length / kSteps) * l);
+  return sigma * rho * sum * length / kSteps;
+}
+
+}  // namespace
+
+TEST_CASE("own core shadow: the shared functions against their definitions", "[closure][core-shadow]") {
+  const glm::vec3 points[] = {{0, 0, 0}, {0.3f, -0.2f, 0.5f}, {-0.7f, 0.1f, 0.2f}, {0.05f, 0.9f, -0.3f}};
+  const glm::vec3 dirs[] = {glm::normalize(glm::vec3(1, 2, 3)), glm::normalize(glm::vec3(-0.4f, 0.1f, 0.9f)),
+                            glm::vec3(0, -1, 0)};
+  for (const glm::vec3& x : points)
+    for (const glm::vec3& d : dirs) {
+      const double exact = exitByBisection(glm::dvec3(x), glm::dvec3(d));
+      CHECK(glsl::unitSphereExitDistance(x, d) == Approx(exact).margin(1e-5));
+      CHECK(glsl::homogeneousOwnSunDepth(x, d, 1.5f, 12.0f) == Approx(1.5 * 12.0 * exact).epsilon(1e-5));
+    }
+  CHECK(glsl::unitSphereExitDistance(glm::vec3(0, 0, 2), glm::vec3(0, 0, 1)) == 0.0f);  // outside, past it
+
+  // the ramp: 0 before the first matter, the whole chord after the last, linear between
+  CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.1f) == 0.0f);
+  CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.5f) == Approx(3.0f));
+  CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.95f) == Approx(6.0f));
+
+  // the factor: the ratio of the two sunlights where the particle's point lies deeper, else 1
+  const float g = 0.757f;
+  for (const float own : {0.0f, 0.5f, 2.0f, 9.0f, 40.0f})
+    for (const float hom : {0.0f, 0.3f, 3.0f, 20.0f}) {
+      const double expected = own <= hom ? 1.0 : sunlight(own, g) / sunlight(hom, g);
+      INFO("tau own " << own << ", tau homogeneous " << hom);
+      CHECK(glsl::ownCoreShadow(own, hom, g) == Approx(expected).epsilon(1e-5));
+      CHECK(glsl::ownCoreShadow(own, hom, g) <= 1.0f);
+    }
+}
+
+TEST_CASE("own core shadow: the own optical depth toward the sun from the table", "[closure][core-shadow]") {
+  const Medium medium;
+  const double sigma = medium.unitOpticalRadius();
+  const glm::vec3 l = glm::normalize(glm::vec3(0.3f, 0.8f, -0.5f));
+
+  SECTION("a homogeneous sphere: the table's ramp is the exact optical depth") {
+    const Table4D od = depthTable(DensityModel::Sphere);
+    const ReferenceParticle sphere(DensityModel::Sphere, 1);
+    for (const glm::vec3& x : {glm::vec3(0, 0, 0), glm::vec3(0.4f, -0.3f, 0.2f), glm::vec3(-0.5f, -0.5f, 0.5f)}) {
+      const double exact = integratedToSun(sphere, sigma, 2.0f, x, l);
+      INFO("x " << x.x << " " << x.y << " " << x.z);
+      CHECK(ownSunOpticalDepth(od, x, l, 2.0f) == Approx(exact).epsilon(0.03));
+    }
+  }
+  SECTION("the noise particle: behind its last matter the whole chord, before its first none") {
+    const Table4D od = depthTable(medium.model);
+    const ReferenceParticle particle(medium.model, medium.seed);
+    int behind = 0;
+    for (int i = 0; i < 12; ++i) {
+      // points near the surface on the side away from the sun, and on the side toward it
+      const float a = 0.52f * static_cast<float>(i);
+      glm::vec3 t = glm::normalize(glm::cross(l, glm::vec3(0, 0, 1)));
+      const glm::vec3 u = glm::cross(l, t);
+      const glm::vec3 offset = 0.35f * (std::cos(a) * t + std::sin(a) * u);
+      const float depth = std::sqrt(std::max(0.0f, 0.98f * 0.98f - glm::dot(offset, offset)));
+      const glm::vec3 far = offset - depth * l, near = offset + depth * l;
+      const double whole = integratedToSun(particle, sigma, 1.0f, far, l);
+      INFO("offset angle " << a);
+      CHECK(ownSunOpticalDepth(od, far, l, 1.0f) == Approx(whole).epsilon(0.05).margin(0.05));
+      CHECK(ownSunOpticalDepth(od, near, l, 1.0f) <= 0.05 * whole + 1e-3);
+      behind += whole > 1.0;
+    }
+    CHECK(behind >= 6);  // the chords hold matter: the check above is not of empty rays
+  }
+}
