@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -68,6 +69,22 @@ TEST_CASE("own core shadow: the shared functions against their definitions", "[c
   CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.1f) == 0.0f);
   CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.5f) == Approx(3.0f));
   CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.95f) == Approx(6.0f));
+
+  // the mean scattering point: the e^{−τ(t − first)/(last − first)}-weighted mean of t over the
+  // matter [first, last] (midpoint rule), for transparent to opaque chords
+  for (const float tau : {1e-4f, 0.3f, 2.0f, 15.0f})
+    for (const auto& [first, last] : {std::pair{0.0f, 1.0f}, std::pair{0.1f, 0.7f}, std::pair{0.45f, 0.55f}}) {
+      constexpr int kSteps = 20000;
+      double weighted = 0.0, total = 0.0;
+      for (int i = 0; i < kSteps; ++i) {
+        const double t = first + (i + 0.5) * (last - first) / kSteps;
+        const double w = std::exp(-tau * (t - first) / (last - first));
+        weighted += w * t;
+        total += w;
+      }
+      INFO("tau " << tau << ", matter [" << first << ", " << last << "]");
+      CHECK(glsl::meanScatteringShare(first, last, tau) == Approx(weighted / total).margin(1e-5));
+    }
 
   // the factor: the ratio of the two sunlights where the particle's point lies deeper, else 1
   const float g = 0.757f;

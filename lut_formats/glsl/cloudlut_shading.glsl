@@ -80,6 +80,13 @@ CLOUDLUT_FN float meanScatteringFraction(float tau) {
   return 1.0f / tau - e / (1.0f - e);
 }
 
+// Share of a chord (dimensionless, of its length from the entry) at which its light is scattered
+// on average: the first matter, then the e^{−τt}-weighted mean (meanScatteringFraction) of the
+// stretch up to the last matter. first, last ∈ [0, 1] are shares of the chord; τ its optical depth.
+CLOUDLUT_FN float meanScatteringShare(float firstMatter, float lastMatter, float tau) {
+  return firstMatter + (lastMatter - firstMatter) * meanScatteringFraction(tau);
+}
+
 // Mean sun transmittance J̄1 (dimensionless, the single table's quantity) of a chord of a
 // noise particle, from two estimates that each fall short where the other holds:
 //   tableSource  J̄1 of the homogeneous sphere at the chord's mean density (the table, exact

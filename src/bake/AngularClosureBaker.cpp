@@ -115,13 +115,15 @@ void integrateModel(Tally& t, const Table4D& od, const Table4D& multiple, float 
         const float rhoChord = rho * chord.meanDensity;
         const float stored = sampleScattering(multiple, S, glm::vec3(v), lf, std::max(rhoChord, rhoMin)) *
                              std::min(rhoChord / rhoMin, 1.0f);
-        // the chord's mean scattering point x̄ (particle.frag.glsl: first matter, then the
-        // e^{−τt}-weighted share of the stretch to the last matter)
-        const float first = chord.firstMatter, last = lookupLastMatter(od, S, glm::vec3(v));
-        const glm::vec3 x = S + (first + (last - first) * glsl::meanScatteringFraction(chord.opticalDepth)) *
-                                    chord.chordLength * glm::vec3(v);
-        const float shadow = !s.ownCoreShadow ? 1.0f : glsl::ownCoreShadow(ownSunOpticalDepth(od, x, lf, rho),
-                                                 glsl::homogeneousOwnSunDepth(x, lf, rhoChord, sigma), g);
+        float shadow = 1.0f;
+        if (s.ownCoreShadow) {
+          // at the chord's mean scattering point x̄ (meanScatteringShare, as particle.frag.glsl)
+          const float share = glsl::meanScatteringShare(chord.firstMatter, lookupLastMatter(od, S, glm::vec3(v)),
+                                                        chord.opticalDepth);
+          const glm::vec3 x = S + share * chord.chordLength * glm::vec3(v);
+          shadow = glsl::ownCoreShadow(ownSunOpticalDepth(od, x, lf, rho),
+                                       glsl::homogeneousOwnSunDepth(x, lf, rhoChord, sigma), g);
+        }
         sum += shadow * scatteringFromStored(storage, stored, chord.opticalDepth);
       }
     const auto b = static_cast<std::size_t>(muBin(-glm::dot(v, l), s.muBins));

@@ -124,7 +124,7 @@ void main() {
   // as much.
   float firstMatter = inside ? 0.0 : clamp(od.y, 0.0, 1.0);
   float lastMatter = 1.0 - min((1.0 - clamp(od.z, 0.0, 1.0)) / max(front, 1e-6), 1.0 - firstMatter);
-  float tMean = tNear + (tExit - tNear) * (firstMatter + (lastMatter - firstMatter) * meanScatteringFraction(tau));
+  float tMean = tNear + (tExit - tNear) * meanScatteringShare(firstMatter, lastMatter, tau);
   vec3 xMean = uEye + dir * tMean;
 
   // Sunlight reaching the particle: per particle from the occlusion pass (seed §5.3), or at the
@@ -149,7 +149,7 @@ void main() {
   // Multiple scattering, per unit sun irradiance, already lit (the sunlight factor included).
   //   seed:  the mean source of the particle's sphere at ρ, times the sunlight;
   //   cloud: the particle's sphere at the ray's density ρ·T̄, closed per exit direction, darkened
-//          by the particle's own core shadow, lit by
+  //          by the particle's own core shadow, lit by
   //          the larger of the direct and the diffuse transmittance through the cloud toward the
   //          sun, blended with the cloud sphere of the local cloud around the mean scattering
   //          point (localCloudAlongSun, cloudSphereEntry, cloudSphereDensity), lit the same way
