@@ -133,6 +133,12 @@ TEST_CASE("angular closure: the record's rules and the interpolation", "[closure
   nlohmann::json older = angularClosureToJson(c);
   older.erase("own_core_shadow");  // a set baked before the field: K without the core shadow
   CHECK_FALSE(angularClosureFromJson(older, problem)->ownCoreShadow);
+  // the bound on its brightening: kept, and 1 (never brighten) for a set baked before it
+  c.ownCoreShadowMax = 1.2f;
+  CHECK(angularClosureFromJson(angularClosureToJson(c), problem)->ownCoreShadowMax == Approx(1.2f));
+  older = angularClosureToJson(c);
+  older.erase("own_core_shadow_max");
+  CHECK(angularClosureFromJson(older, problem)->ownCoreShadowMax == 1.0f);
   // nodes at ρ = 1/2 and 1, bin centres at μ = −½ and ½; held beyond them
   CHECK(angularClosureAt(c, 0.5f, -0.5f) == Approx(0.5f));
   CHECK(angularClosureAt(c, 1.0f, 0.5f) == Approx(2.0f));
@@ -144,7 +150,8 @@ TEST_CASE("angular closure: the record's rules and the interpolation", "[closure
   } bad[] = {{"values", {1.0, 1.0, 1.0}},         {"values", {1.0, 1.0, 1.0, 9.0}}, {"values", {1.0, 1.0, 1.0, "x"}},
              {"density_nodes", 17},                {"mu_bins", 0.5},                 {"log2_rho_step", 0.0},
              {"log2_rho_first", nullptr},          {"relative_errors", {-1.0, 0, 0, 0}},
-             {"own_core_shadow", 1}};
+             {"own_core_shadow", 1},               {"own_core_shadow_max", 0.9},     {"own_core_shadow_max", 5.0},
+             {"own_core_shadow_max", "1.2"}};
   for (const auto& b : bad) {
     INFO(b.field << " = " << b.value.dump());
     nlohmann::json record = angularClosureToJson(c);

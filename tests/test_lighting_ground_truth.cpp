@@ -133,8 +133,9 @@ TEST_CASE("lighting: the angular closure brings a dense particle within the issu
 // reference's rim is bright on the side toward the sun and dark behind the particle's dense core,
 // where the own term's homogeneous sphere of the chord's mean density lights it all round. At
 // 96×64 with the default tables the cloud model measured nc_rel_rmse 16.8% (bias −0.7%) without
-// the core shadow and 11.4% (−1.4%) with it, each with its own closure; both stay above issue 17's
-// 10%. The core shadow must lower the error by at least a fifth, and the bias stay within 3%.
+// the core shadow and 9.5% (−1.5%) with it (brightening by at most 1.2), each with its own
+// closure; this fixture (half the closure's photons, a 512-path reference) 17.1% and 9.8%. The
+// core shadow must lower the error by at least a third, and the bias stay within 3%.
 TEST_CASE("lighting: the own core shadow darkens the backlit particle's far rim as the path tracer does",
           "[render][lighting]") {
   constexpr int kRimWidth = 96, kRimHeight = 64;
@@ -151,7 +152,7 @@ TEST_CASE("lighting: the own core shadow darkens the backlit particle's far rim 
   std::printf("backlit: ref noise %.3f  without the core shadow nc_rel_rmse %.3f bias %+.3f  with it %.3f bias %+.3f\n",
               j[0].refNoise, j[0].ncRelRmse, j[0].relBias, j[1].ncRelRmse, j[1].relBias);
   CHECK(j[1].refNoise < 0.3);
-  CHECK(j[1].ncRelRmse < 0.8 * j[0].ncRelRmse);
+  CHECK(j[1].ncRelRmse < 0.67 * j[0].ncRelRmse);
   CHECK(std::abs(j[1].relBias) <= 0.03);
 }
 

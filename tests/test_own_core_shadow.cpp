@@ -86,15 +86,16 @@ TEST_CASE("own core shadow: the shared functions against their definitions", "[c
       CHECK(glsl::meanScatteringShare(first, last, tau) == Approx(weighted / total).margin(1e-5));
     }
 
-  // the factor: the ratio of the two sunlights where the particle's point lies deeper, else 1
+  // the factor: the ratio of the two sunlights, at most the bound (1: only ever darkens)
   const float g = 0.757f;
-  for (const float own : {0.0f, 0.5f, 2.0f, 9.0f, 40.0f})
-    for (const float hom : {0.0f, 0.3f, 3.0f, 20.0f}) {
-      const double expected = own <= hom ? 1.0 : sunlight(own, g) / sunlight(hom, g);
-      INFO("tau own " << own << ", tau homogeneous " << hom);
-      CHECK(glsl::ownCoreShadow(own, hom, g) == Approx(expected).epsilon(1e-5));
-      CHECK(glsl::ownCoreShadow(own, hom, g) <= 1.0f);
-    }
+  for (const float most : {1.0f, 1.2f, 4.0f})
+    for (const float own : {0.0f, 0.5f, 2.0f, 9.0f, 40.0f})
+      for (const float hom : {0.0f, 0.3f, 3.0f, 20.0f}) {
+        const double expected = std::min(sunlight(own, g) / sunlight(hom, g), static_cast<double>(most));
+        INFO("tau own " << own << ", tau homogeneous " << hom << ", bound " << most);
+        CHECK(glsl::ownCoreShadow(own, hom, g, most) == Approx(expected).epsilon(1e-5));
+        if (own >= hom) CHECK(glsl::ownCoreShadow(own, hom, g, most) <= 1.0f);
+      }
 }
 
 TEST_CASE("own core shadow: the own optical depth toward the sun from the table", "[closure][core-shadow]") {

@@ -168,18 +168,22 @@ CLOUDLUT_FN float homogeneousOwnSunDepth(vec3 x, vec3 l, float rhoChord, float s
   return rhoChord * sigma * unitSphereExitDistance(x, l);
 }
 
-// The particle's own core shadow on its multiple term (dimensionless, in (0, 1];
+// The particle's own core shadow on its multiple term (dimensionless, in (0, maxFactor];
 // docs/LIGHTING.md, "The particle's own core shadow"). The own term reads the homogeneous sphere
 // of the chord's mean density, which at the chord's mean scattering point x̄ lies under
 // tauHomogeneous of its own matter toward the sun (homogeneousOwnSunDepth); the particle itself
 // lies under tauOwn there (ownSunRamp, the sun volume's own ramp). Where the particle's core
 // shadows x̄ more than the sphere would (the far rim of a particle seen toward the sun), the
 // term is darkened by the ratio of the sunlight through the two, max(e^{−τ}, T_d(τ)) as for
-// the neighbours' shadow; it is never brightened.
-CLOUDLUT_FN float ownCoreShadow(float tauOwn, float tauHomogeneous, float g) {
+// the neighbours' shadow. Where it lies under less (the band inside the rim toward the sun), the
+// term is brightened by the same ratio, but by at most maxFactor (≥ 1; the closure's
+// own_core_shadow_max): the ratio's sunlight at one point says less about a whole chord the more
+// it departs from 1, and a larger bound over-lights the dense particle's sunlit face, where x̄
+// lies past the noise particle's empty outskirts that the sphere fills (docs/LIGHTING.md).
+CLOUDLUT_FN float ownCoreShadow(float tauOwn, float tauHomogeneous, float g, float maxFactor) {
   float own = max(exp(-max(tauOwn, 0.0f)), diffuseTransmittance(tauOwn, g));
   float homogeneous = max(exp(-max(tauHomogeneous, 0.0f)), diffuseTransmittance(tauHomogeneous, g));
-  return min(own / homogeneous, 1.0f);
+  return min(own / homogeneous, maxFactor);
 }
 
 // The share of the sun's irradiance (dimensionless) that gets through τ of cloud toward the

@@ -86,8 +86,8 @@ void tracePhotons(Tally& t, const ReferenceParticle& particle, double sigma, con
 // in it of Σ over the chords of the disc facing v of (1 − e^{−τ}) J̄M(S, v, l, ρT̄) · C dA, with C
 // the own core shadow at the chord's mean scattering point x̄ (ownCoreShadow: the particle's own
 // τ toward the sun there, ownSunOpticalDepth, against the homogeneous sphere's; later-phase
-// asymmetry g) (particle.frag.glsl's own term without its sunlight factor, 1 for an isolated
-// particle), times
+// asymmetry g, at most s.ownCoreShadowMax) (particle.frag.glsl's own term without its sunlight
+// factor, 1 for an isolated particle), times
 // the bin's exact solid angle 4π/bins (a bin's count of Fibonacci directions varies with l by
 // ±10%, which summing them would pass into K).
 void integrateModel(Tally& t, const Table4D& od, const Table4D& multiple, float rho, const glm::dvec3& l,
@@ -122,7 +122,7 @@ void integrateModel(Tally& t, const Table4D& od, const Table4D& multiple, float 
                                                         chord.opticalDepth);
           const glm::vec3 x = S + share * chord.chordLength * glm::vec3(v);
           shadow = glsl::ownCoreShadow(ownSunOpticalDepth(od, x, lf, rho),
-                                       glsl::homogeneousOwnSunDepth(x, lf, rhoChord, sigma), g);
+                                       glsl::homogeneousOwnSunDepth(x, lf, rhoChord, sigma), g, s.ownCoreShadowMax);
         }
         sum += shadow * scatteringFromStored(storage, stored, chord.opticalDepth);
       }
@@ -141,7 +141,8 @@ std::optional<AngularClosure> computeAngularClosure(const Table4D& od, const Tab
                                      const ProgressFn& progress) {
   if (s.densityNodes < 1 || s.densityNodes > kMaxAngularClosureAxis || s.muBins < 1 ||
       s.muBins > kMaxAngularClosureAxis || s.sunDirections < 1 ||
-      s.photonsPerDirection < 1 || s.viewDirections < 1 || s.discSide < 1 || !(s.log2RhoStep > 0.0f))
+      s.photonsPerDirection < 1 || s.viewDirections < 1 || s.discSide < 1 || !(s.log2RhoStep > 0.0f) ||
+      !(s.ownCoreShadowMax >= 1.0f && s.ownCoreShadowMax <= kMaxOwnCoreShadowMax))
     throw std::invalid_argument("angular closure: settings out of range");
   const double sigma = unitOpticalRadius(od);
   const float g = phaseMeanCosine(later);
@@ -173,6 +174,7 @@ std::optional<AngularClosure> computeAngularClosure(const Table4D& od, const Tab
   c.densityNodes = nodes;
   c.muBins = s.muBins;
   c.ownCoreShadow = s.ownCoreShadow;
+  c.ownCoreShadowMax = s.ownCoreShadowMax;
   for (int node = 0; node < nodes; ++node)
     for (int b = 0; b < s.muBins; ++b) {
       // sums in task order: the same whatever the thread count

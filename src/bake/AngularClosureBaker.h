@@ -41,6 +41,8 @@ struct AngularClosureSettings {
   int discSide = 32;                // chords per side of the disc facing each view direction
   bool ownCoreShadow = true;        // the model's own term darkened by its core shadow (ownCoreShadow);
                                     // false: the closure of the term without it (sets baked before it)
+  float ownCoreShadowMax = 1.2f;    // the most it may brighten the term (ownCoreShadow's bound; a
+                                    // sweep of 1 … 1.5 in docs/LIGHTING.md)
   std::uint64_t seed = 1;
 };
 

@@ -230,7 +230,7 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
   std::vector<LutRenderer> lutRenderers;
   for (const int orders : {0, 18}) {
     const std::string tag = orders == 0 ? "" : "-" + std::to_string(orders);
-    const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + tag + (options.quick ? "-quick" : "-default") + "-closure-core-shadow");
+    const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + tag + (options.quick ? "-quick" : "-default") + "-closure-core-shadow-1.2");
     reportProgress(options.progress, "ground-truth: LUT set" + tag, 0.0);
     if (!ensureLutSet(lutDir, medium, options.quick, orders, lutNote)) continue;
     try {

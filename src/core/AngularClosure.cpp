@@ -20,7 +20,8 @@ std::vector<double> rounded(const std::vector<float>& v) {
 
 nlohmann::json angularClosureToJson(const AngularClosure& c) {
   return {{"log2_rho_first", c.log2RhoFirst}, {"log2_rho_step", c.log2RhoStep},     {"density_nodes", c.densityNodes},
-          {"mu_bins", c.muBins},               {"values", rounded(c.values)}, {"relative_errors", rounded(c.relativeErrors)}, {"own_core_shadow", c.ownCoreShadow}};
+          {"mu_bins", c.muBins},               {"values", rounded(c.values)}, {"relative_errors", rounded(c.relativeErrors)}, {"own_core_shadow", c.ownCoreShadow},
+          {"own_core_shadow_max", c.ownCoreShadowMax}};
 }
 
 std::optional<AngularClosure> angularClosureFromJson(const nlohmann::json& record, std::string& problem) {
@@ -69,6 +70,12 @@ std::optional<AngularClosure> angularClosureFromJson(const nlohmann::json& recor
   if (record.contains("own_core_shadow")) {
     if (!record["own_core_shadow"].is_boolean()) return bad("own_core_shadow: expected true or false");
     c.ownCoreShadow = record["own_core_shadow"].get<bool>();
+  }
+  if (record.contains("own_core_shadow_max")) {
+    double most = 0;
+    if (!number("own_core_shadow_max", most) || !(most >= 1.0 && most <= kMaxOwnCoreShadowMax))
+      return bad("own_core_shadow_max: expected a number in [1, " + std::to_string(static_cast<int>(kMaxOwnCoreShadowMax)) + "]");
+    c.ownCoreShadowMax = static_cast<float>(most);
   }
   return c;
 }

@@ -27,10 +27,17 @@ struct AngularClosure {
   // the renderer applies that factor; false for sets baked before it, whose K closes the term
   // without it.
   bool ownCoreShadow = false;
+  // The most that factor may brighten the term (≥ 1; 1 for sets baked before the bound was
+  // raised: they never brighten).
+  float ownCoreShadowMax = 1.0f;
 };
 
+// Largest own_core_shadow_max a record may hold.
+inline constexpr float kMaxOwnCoreShadowMax = 4.0f;
+
 // The record: {"log2_rho_first", "log2_rho_step", "density_nodes", "mu_bins", "values",
-// "relative_errors", "own_core_shadow"} (the last a boolean, false when absent).
+// "relative_errors", "own_core_shadow", "own_core_shadow_max"} (own_core_shadow a boolean, false
+// when absent; own_core_shadow_max a number in [1, kMaxOwnCoreShadowMax], 1 when absent).
 nlohmann::json angularClosureToJson(const AngularClosure& closure);
 
 // The closure a record describes, or nullopt with `problem` saying which field is wrong and why.

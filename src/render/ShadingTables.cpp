@@ -125,6 +125,7 @@ void ShadingTables::bind(const ProgramUniforms& uniforms) const {
   uniforms.set("uAngularClosureRho", glm::vec4(closure_.log2RhoFirst, closure_.log2RhoStep, 0.0f, 0.0f));
   uniforms.set("uAngularClosureDims", glm::ivec3(closure_.densityNodes, closure_.muBins, closure_.ownCoreShadow ? 1 : 0));
   uniforms.set("uAngularClosure", closure_.values);
+  uniforms.set("uOwnCoreShadowMax", closure_.ownCoreShadowMax);
 }
 
 void ShadingTables::readAngularClosure(const nlohmann::json& record) {

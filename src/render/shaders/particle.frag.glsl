@@ -49,10 +49,12 @@ float multipleSourceAt(vec3 S, vec3 v, vec3 l, float rho) {
 // ω_out · l over the power the own-term model sends there. Nodes uAngularClosureRho.x +
 // i·uAngularClosureRho.y in log2 ρ (i < uAngularClosureDims.x), uniform bins of μ over [−1, 1]
 // (uAngularClosureDims.y); kMaxAngularClosureAxis² values (core/AngularClosure.h).
-// uAngularClosureDims.z is 1 when K closes the own term with its core shadow (ownCoreShadow).
+// uAngularClosureDims.z is 1 when K closes the own term with its core shadow (ownCoreShadow),
+// which brightens it by at most uOwnCoreShadowMax (the closure's own_core_shadow_max).
 uniform vec4 uAngularClosureRho;
 uniform ivec3 uAngularClosureDims;
 uniform float uAngularClosure[256];
+uniform float uOwnCoreShadowMax;
 
 // K at the particle's density scale ρ and exit direction μ (dimensionless): the shared
 // interpolation (cloudlut_shading.glsl, angularClosurePosition …) of the uniform's values.
@@ -166,13 +168,14 @@ void main() {
       // (angularClosure at its exit direction −v·l)
       float own = lit * multipleScatteringFromTable(multipleSourceAt(S, v, l, rho * od.x), tau) *
                   angularClosure(rho, -dot(dir, uSunDirection));
-      // darkened where the particle's core shadows x̄ more than the table's sphere would
-      // (ownCoreShadow; only with a closure baked for it, uAngularClosureDims.z)
+      // darkened where the particle's core shadows x̄ more than the table's sphere would, and
+      // brightened (by at most uOwnCoreShadowMax) where less (ownCoreShadow; only with a closure
+      // baked for it, uAngularClosureDims.z)
       if (uSunlightVolume != 0 && uAngularClosureDims.z != 0)
         own *= ownCoreShadow(sunTau.y - sunTau.x,
                              homogeneousOwnSunDepth(toParticle * (xMean - p.centerDensity.xyz), l, rho * od.x,
                                                     uUnitOpticalRadius),
-                             uLaterAsymmetry);
+                             uLaterAsymmetry, uOwnCoreShadowMax);
       // the cloud sphere: the local cloud's column (localCloudAlongSun), less the particle's own
       // chords, weighs it (less 0.01: a cloud that thin is none, and reads at three points
       // differ by the volume's fixed-point rounding, ~10⁻³); the cloud beyond the window toward
