@@ -146,6 +146,12 @@ CLOUDLUT_FN float diffuseTransmittance(float tau, float g) {
   return 1.0f / (1.0f + 0.75f * (1.0f - g) * max(tau, 0.0f));
 }
 
+// The sunlight that lights multiple scattering behind τ of cloud (dimensionless): the larger of
+// the direct beam e^{−τ} and the diffuse transmittance T_d(τ) (diffuseTransmittance).
+CLOUDLUT_FN float directOrDiffuseTransmittance(float tau, float g) {
+  return max(exp(-max(tau, 0.0f)), diffuseTransmittance(tau, g));
+}
+
 // Distance (unit-sphere units) from a point x of the unit sphere to its surface along the unit
 // direction d: the larger root of |x + t·d| = 1; 0 for a point outside that has passed it.
 CLOUDLUT_FN float unitSphereExitDistance(vec3 x, vec3 d) {
@@ -174,16 +180,15 @@ CLOUDLUT_FN float homogeneousOwnSunDepth(vec3 x, vec3 l, float rhoChord, float s
 // tauHomogeneous of its own matter toward the sun (homogeneousOwnSunDepth); the particle itself
 // lies under tauOwn there (ownSunRamp, the sun volume's own ramp). Where the particle's core
 // shadows x̄ more than the sphere would (the far rim of a particle seen toward the sun), the
-// term is darkened by the ratio of the sunlight through the two, max(e^{−τ}, T_d(τ)) as for
-// the neighbours' shadow. Where it lies under less (the band inside the rim toward the sun), the
-// term is brightened by the same ratio, but by at most maxFactor (≥ 1; the closure's
+// term is darkened by the ratio of the sunlight through the two (directOrDiffuseTransmittance,
+// as for the neighbours' shadow). Where it lies under less (the band inside the rim toward the
+// sun), the term is brightened by the same ratio, but by at most maxFactor (≥ 1; the closure's
 // own_core_shadow_max): the ratio's sunlight at one point says less about a whole chord the more
 // it departs from 1, and a larger bound over-lights the dense particle's sunlit face, where x̄
 // lies past the noise particle's empty outskirts that the sphere fills (docs/LIGHTING.md).
 CLOUDLUT_FN float ownCoreShadow(float tauOwn, float tauHomogeneous, float g, float maxFactor) {
-  float own = max(exp(-max(tauOwn, 0.0f)), diffuseTransmittance(tauOwn, g));
-  float homogeneous = max(exp(-max(tauHomogeneous, 0.0f)), diffuseTransmittance(tauHomogeneous, g));
-  return min(own / homogeneous, maxFactor);
+  return min(directOrDiffuseTransmittance(tauOwn, g) / directOrDiffuseTransmittance(tauHomogeneous, g),
+             maxFactor);
 }
 
 // The share of the sun's irradiance (dimensionless) that gets through τ of cloud toward the

@@ -185,7 +185,7 @@ void main() {
       if (weight > 0.0) {
         vec3 entry = cloudSphereEntry(local.x, local.y, dir, uSunDirection);
         float rhoCloud = cloudSphereDensity(max(local.y, tau), uUnitOpticalRadius);
-        float shadow = max(exp(-local.z), diffuseTransmittance(local.z, uLaterAsymmetry));
+        float shadow = directOrDiffuseTransmittance(local.z, uLaterAsymmetry);
         float cloud = shadow * multipleScatteringFromTable(multipleSourceAt(entry, dir, uSunDirection, rhoCloud), tau);
         multiple = mix(own, cloud, weight);
       } else {
