@@ -273,6 +273,9 @@ TEST_CASE("render CLI: absurd sizes and bad options are usage errors", "[render]
       "--terms sunlight",
       "--lighting bogus",
       "--sunlight nowhere",
+      "--diffusion 1.5",
+      "--diffusion 0.5 --diffusion-sweeps 0",
+      "--diffusion 0.5 --diffusion-spacing 0",
       "--eye 0,0,0 --target 0,0,0",
       "--no-such-option",
   };

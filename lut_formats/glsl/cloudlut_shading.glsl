@@ -281,3 +281,48 @@ CLOUDLUT_FN float angularClosureBlend(vec4 k, vec2 p, vec2 cell) {
   vec2 f = p - cell;
   return mix(mix(k.x, k.y, f.y), mix(k.z, k.w, f.y), f.x);
 }
+
+// ---- Diffusion of the multiply scattered light (render/DiffusionVolume.h, docs/LIGHTING.md) ----
+// Where particles make a cloud, the multiply scattered light is the solution of the
+// flux-limited diffusion equation −∇·(D∇φ) = q on a grid over the cloud: φ the fluence per unit
+// sun irradiance (dimensionless), q what the sun's δ-Eddington-scaled beam loses per unit length
+// (1/length), D the diffusion coefficient (length). The functions below are its terms.
+
+// δ-Eddington: the share f = g² of the phase function's forward peak taken as unscattered, for
+// the later phase function's mean cosine g (dimensionless); the scaled extinction is (1 − f)·σ.
+CLOUDLUT_FN float deltaEddingtonForwardShare(float g) { return g * g; }
+
+// δ-Eddington: the mean cosine g* = (g − f)/(1 − f) = g/(1 + g) of what is left once the forward
+// peak f = g² is removed (dimensionless).
+CLOUDLUT_FN float deltaEddingtonAsymmetry(float g) { return g / (1.0f + g); }
+
+// Wilson's flux-limited diffusion coefficient D = 1/(3·σtr + |∇φ|/φ) (length): σtr = σ*(1 − g*)
+// the transport coefficient (1/length), gradientRatio = |∇φ|/φ (1/length). Deep in a cloud it is
+// the classical 1/(3σtr); in clear air it keeps the flux |D∇φ| at most φ, as light can carry.
+CLOUDLUT_FN float diffusionCoefficient(float transport, float gradientRatio) {
+  return 1.0f / (3.0f * transport + max(gradientRatio, 0.0f));
+}
+
+// Marshak's vacuum condition at a grid face h/2 beyond the last node (h its spacing, D the node's
+// coefficient, both lengths): the flux that leaves per unit area per unit φ at the node,
+// 2D/(4D + h) (dimensionless). From D·(φ − φ_face)/(h/2) = φ_face/2, the flux out = φ_face/2.
+CLOUDLUT_FN float marshakExitCoefficient(float D, float h) { return 2.0f * D / (4.0f * D + h); }
+
+// Radiance per unit sun irradiance (1/sr) that a diffuse field of fluence φ and flux J scatters
+// toward direction ω, for a phase function of mean cosine g, to first order (P1):
+// (φ + 3g·J·ω)/(4π). A chord of optical depth τ sends (1 − e^{−τ}) times it.
+CLOUDLUT_FN float diffusedRadiance(float phi, vec3 flux, vec3 omega, float g) {
+  return max(phi + 3.0f * g * dot(flux, omega), 0.0f) * 0.0795774715459477f;
+}
+
+// Share of a fragment's multiple light taken from the diffusion field rather than the tables
+// (dimensionless): `share` (the renderer's setting) where the particle lies deep in a cloud
+// (cloudWeight → 1, cloudScaleWeight), 0.3 of it where it stands alone (cloudWeight = 0: the
+// tables hold an isolated particle, a dense one better than a grid does), and fading as
+// (1 − μ)² with μ = max(v·l, 0) toward the sun: diffusion's P1 field has no forward peak, which
+// makes the light seen toward the sun (the backlit rim). Measured against the path tracer,
+// docs/LIGHTING.md ("Diffusion of the multiply scattered light").
+CLOUDLUT_FN float diffusionShareOfMultiple(float share, float cloudWeight, float viewDotSun) {
+  float mu = clamp(viewDotSun, 0.0f, 1.0f);
+  return share * (0.3f + 0.7f * clamp(cloudWeight, 0.0f, 1.0f)) * (1.0f - mu) * (1.0f - mu);
+}

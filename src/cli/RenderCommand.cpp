@@ -68,6 +68,9 @@ int runRender(int argc, char** argv) {
     ("volume-pool-mib", "volume blending: node pool budget of one screen tile in MiB (capped by the GL's storage block limit)", cxxopts::value<double>()->default_value("128"))
     ("no-occlusion", "constant sunlight (no light-space occlusion, no sun volume shadows)")
     ("box-proxies", "rasterise every particle as its bounding box, not the polygon around its outline seen from afar (the same image, more fragments: for timing)")
+    ("diffusion", "cloud lighting of --particles (experimental): the share, 0 to 1, of the multiple light taken from a flux-limited diffusion solve over the particles (docs/LIGHTING.md)", cxxopts::value<double>()->default_value("0"))
+    ("diffusion-sweeps", "--diffusion: sweeps of the solve", cxxopts::value<int>()->default_value("800"))
+    ("diffusion-spacing", "--diffusion: node spacing, in units of the smallest particle radius (grown to hold the particles in 128 nodes per side)", cxxopts::value<double>()->default_value("0.2"))
     ("computed-chords", "the particle shader computes each particle's own chords in the sun volume again instead of reading the splat's (the same image, slower: for timing)")
     ("lighting", "lighting model: cloud (sunlight per shading point, multiple scattering of the cloud around each point, "
      "ambient from the sky above and the ground below through the cloud above and below each point) or seed (the "
@@ -130,6 +133,14 @@ int runRender(int argc, char** argv) {
   settings.occlusion = args.count("no-occlusion") == 0;
   settings.outlinePolygons = args.count("box-proxies") == 0;
   settings.sunChordMap = args.count("computed-chords") == 0;
+  const double diffusion = args["diffusion"].as<double>(), spacing = args["diffusion-spacing"].as<double>();
+  if (!(diffusion >= 0.0 && diffusion <= 1.0)) throw UsageError("--diffusion: expected a share from 0 to 1");
+  if (!(spacing >= 0.01 && spacing <= 10.0)) throw UsageError("--diffusion-spacing: expected 0.01 to 10 particle radii");
+  settings.diffusionShare = static_cast<float>(diffusion);
+  settings.diffusionSpacing = static_cast<float>(spacing);
+  settings.diffusionIterations = args["diffusion-sweeps"].as<int>();
+  if (settings.diffusionIterations < 1 || settings.diffusionIterations > 100000)
+    throw UsageError("--diffusion-sweeps: expected 1 to 100000");
   settings.lighting = render::parseLighting(args["lighting"].as<std::string>());
   settings.sunlight = args.count("sunlight") ? render::parseSunlight(args["sunlight"].as<std::string>())
                                              : render::defaultSunlight(settings.lighting);

@@ -17,10 +17,12 @@ const std::vector<std::string> kFragmentFiles = {
     "cloudlut_geometry.glsl", "cloudlut_phase.glsl", "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
     "particle_common.glsl", "volume_fragments.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
     "sun_chord_map.glsl", "cascade_columns.glsl", "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
+    "diffusion_sampling.glsl",
     "cloudlut_detail_noise.glsl", "particle_detail.glsl", "particle.frag.glsl"};
 constexpr GLsizei kProxyVertices = 36;  // the box's 6 faces × 2 triangles, or the polygon's fan (particle.vert.glsl)
 constexpr int kSunVolumeUnit = 3;      // texture unit after the three tables (ShadingTables)
 constexpr int kZenithVolumeUnit = 4;
+constexpr int kDiffusionUnit = 5;
 
 }  // namespace
 
@@ -43,7 +45,7 @@ GlProgram ParticlePass::linkProgram(const GlFunctions& gl, bool chordMap) {
 
 void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
                         const RenderSettings& s, const SunVolume& sun, bool sunBuilt, const SunVolume& zenith,
-                        bool zenithBuilt) {
+                        bool zenithBuilt, const DiffusionVolume& diffusion) {
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Enable(GL_CULL_FACE);
   gl_.FrontFace(GL_CCW);
@@ -84,6 +86,9 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   if (!sunBuilt) uniforms.set("uSunCascades", 0);
   zenith.bind(uniforms, kZenithVolumeUnit, "uZenith");
   if (!zenithBuilt) uniforms.set("uZenithCascades", 0);
+  diffusion.bind(uniforms, kDiffusionUnit);
+  uniforms.set("uDiffusionShare", s.diffusionShare);
+  uniforms.set("uDiffusionGain", s.diffusionGain);
   buffers_.records.bind(ParticleBuffers::kRecordsBinding);
   if (buffers_.sortKeys.bytes() == 0) buffers_.sortKeys.ensure(64);
   buffers_.sortKeys.bind(ParticleBuffers::kSortKeysBinding);

@@ -16,6 +16,7 @@
 #include "render/GpuParticleRecord.h"
 #include "render/RenderTypes.h"
 #include "render/ShadingTables.h"
+#include "render/DiffusionVolume.h"
 
 namespace cloudlut::render {
 
@@ -40,10 +41,11 @@ class ParticlePass {
   // `zenithBuilt`, for the cloud lighting's ambient under a sky from above (else no cloud lies
   // above or below any point). A particle's own chords come from the sun volume's chord map
   // when it holds them all and the settings want it (sunChordMap), else the shader computes
-  // them. Waits for the GPU (glFinish).
+  // them. The diffusion volume's field, when built, takes settings.diffusionShare of the multiple
+  // light. Waits for the GPU (glFinish).
   void draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
             const RenderSettings& settings, const SunVolume& sun, bool sunBuilt, const SunVolume& zenith,
-            bool zenithBuilt);
+            bool zenithBuilt, const DiffusionVolume& diffusion);
 
  private:
   // The particle program, reading the chord map (chordMap) or computing the chords.

@@ -8,6 +8,7 @@
 
 #include "core/Errors.h"
 #include "render/CloudscapeGeneration.h"
+#include "render/DiffusionVolume.h"
 #include "render/GlFunctions.h"
 #include "render/GlResources.h"
 #include "render/GpuParticleRecord.h"
@@ -47,6 +48,8 @@ struct Renderer::Impl {
   LightOcclusion occlusion;
   SunVolume sunVolume;
   SunVolume zenithVolume;  // the same structure, columns toward the zenith: the ambient's sky visibility
+  SunVolume diffusionColumns;  // again toward the zenith, finer: the diffusion volume's extinction
+  DiffusionVolume diffusion;
   ParticlePass particles;
   VolumeResolve volume;
   Upscale upscale;
@@ -62,6 +65,8 @@ struct Renderer::Impl {
         occlusion(gl, budget, buffers),
         sunVolume(gl, c, budget, buffers),
         zenithVolume(gl, c, budget, buffers),
+        diffusionColumns(gl, c, budget, buffers),
+        diffusion(gl, c),
         particles(gl, c, luts, buffers),
         volume(gl, budget),
         upscale(gl, budget) {
@@ -111,7 +116,7 @@ struct Renderer::Impl {
   // sunlight needs it; and the zenith volume over `zenithGrid` when the ambient needs it
   // (needsZenithVolume). Returns which volumes were built.
   Built illuminate(std::size_t count, const SunVolumeGrid& grid, const SunVolumeGrid& zenithGrid, const RenderSettings& s,
-                   RenderStats* stats) {
+                   RenderStats* stats, const SunVolumeGrid& diffusionGrid = noDiffusionGrid()) {
     const Stopwatch clock;
     std::size_t dropped = 0, skipped = 0;
     if (s.sunlight == SunlightModel::Particle)
@@ -125,6 +130,12 @@ struct Renderer::Impl {
     if (zenith)
       zenithVolume.build(zenithGrid, count, particles.tables().opticalDepthTexture(),
                          particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), false);
+    diffusion.clear();
+    if (sun && diffusionGrid.cascades == 1 && s.diffusionShare > 0.0f && (s.terms & kTermMultiple) != 0) {
+      diffusionColumns.build(diffusionGrid, count, particles.tables().opticalDepthTexture(),
+                             particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), false);
+      diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionIterations);
+    }
     gl.Finish();
     if (stats) {
       stats->occlusionSeconds = clock.seconds();
@@ -167,7 +178,7 @@ struct Renderer::Impl {
     const Stopwatch drawClock;
     if (blendVolume) {
       volume.run(target.colourTexture(),
-                 [&] { particles.draw(count, useOrder, true, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith); });
+                 [&] { particles.draw(count, useOrder, true, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith, diffusion); });
       if (stats) {
         const VolumeResolve::Counts c = volume.counts();
         stats->fragments = c.fragments;
@@ -182,7 +193,7 @@ struct Renderer::Impl {
         stats->volumePoolBytes = volume.tiling().poolBytes;
       }
     } else {
-      particles.draw(count, useOrder, false, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith);
+      particles.draw(count, useOrder, false, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith, diffusion);
     }
     if (stats) {
       stats->renderSeconds = drawClock.seconds();
@@ -223,7 +234,8 @@ struct Renderer::Impl {
     for (const scene::Particle& p : list) altitude += p.center.y / static_cast<float>(list.size());
     const RenderSettings lit = litByAtmosphere(s, altitude);
     const Built built = illuminate(list.size(), needsSunVolume(lit) ? sunGridFor(list, lit) : SunVolumeGrid{},
-                                   needsZenithVolume(lit) ? zenithGridFor(list, lit) : SunVolumeGrid{}, lit, stats);
+                                   needsZenithVolume(lit) ? zenithGridFor(list, lit) : SunVolumeGrid{}, lit, stats,
+                                   diffusionGridFor(list, lit));
     return draw(list.size(), false, farPlane, lit, built, stats);
   }
 
@@ -310,6 +322,30 @@ struct Renderer::Impl {
     return sunVolumeGridForLayer(s.view.camera.eye, cloud.cloudBase - r.y, cloud.cloudTop + r.y, kZenith,
                                  kZenithColumnsPerRadius * cloud.cellSize, kSunCascadesMax, kZenithColumns);
   }
+  static SunVolumeGrid noDiffusionGrid() {
+    SunVolumeGrid none;
+    none.cascades = 0;
+    return none;
+  }
+  // The diffusion volume's nodes: vertical columns over the particles' bounds and three spacings
+  // beyond (clear air, where the light leaves), the spacing s.diffusionSpacing times the smallest
+  // radius or what 128 nodes per side need.
+  static SunVolumeGrid diffusionGridFor(const std::vector<scene::Particle>& list, const RenderSettings& s) {
+    if (list.empty() || s.diffusionShare <= 0.0f) return noDiffusionGrid();
+    glm::vec3 lo = list[0].center, hi = list[0].center;
+    float smallest = INFINITY;
+    for (const scene::Particle& p : list) {
+      const float reach = std::max({p.radii.x, p.radii.y, p.radii.z});
+      lo = glm::min(lo, p.center - reach);
+      hi = glm::max(hi, p.center + reach);
+      smallest = std::min({smallest, p.radii.x, p.radii.y, p.radii.z});
+    }
+    float spacing = s.diffusionSpacing * smallest;
+    spacing = std::max(spacing, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / static_cast<float>(kDiffusionNodes - 9));
+    return sunVolumeGridForBounds(lo - 3.0f * spacing, hi + 3.0f * spacing, kZenith, spacing, kDiffusionNodes,
+                                  kDiffusionNodes);
+  }
+  static constexpr int kDiffusionNodes = 128;
   static constexpr glm::vec3 kZenith{0.0f, 1.0f, 0.0f};
   static constexpr float kZenithColumnsPerRadius = 0.5f;
   static constexpr int kZenithColumns = 128, kZenithSlices = 64;

@@ -65,6 +65,8 @@ class SunVolume {
   // The chords (footprint columns) the last build's chord map needed (0 without one).
   std::size_t chordsNeeded() const { return chordsNeeded_; }
   const SunVolumeGrid& grid() const { return grid_; }
+  // The volume's R32F 3D texture (0 before the first build).
+  GLuint texture() const { return texture_; }
 
   // The #defines a shader that samples the volume needs (SUN_CASCADES_MAX; SUN_CHORD_MAP, 1 for
   // a particle shader that reads the chord map, sun_volume_sampling.glsl).

@@ -2,7 +2,7 @@
 // Preceded by cloudlut_geometry.glsl, cloudlut_phase.glsl, cloudlut_sampling.glsl,
 // cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl,
 // volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl, sun_chord_map.glsl,
-// sun_volume_sampling.glsl and zenith_volume_sampling.glsl.
+// sun_volume_sampling.glsl, zenith_volume_sampling.glsl and diffusion_sampling.glsl.
 // Two lighting models (render/RenderTypes.h, docs/LIGHTING.md): the seed's (uLighting 0) and the
 // cloud model (uLighting 1), whose equations are cloudlut_shading.glsl's.
 //
@@ -35,6 +35,8 @@ uniform int uVolume;  // 1: volume-aware blending (store the segment in the pixe
 uniform int uLighting;         // 0 seed (§4.4, §5.3), 1 cloud
 uniform int uSunlightVolume;   // 1: sunlight per shading point from the sun volume, 0: per particle
 uniform float uLaterAsymmetry; // mean cosine of the later phase function (diffuseTransmittance)
+uniform float uDiffusionShare; // share of the multiple light from the diffusion volume where it has a field
+uniform float uDiffusionGain;  // the diffusion's calibration (RenderSettings::diffusionGain)
 
 // The multiple table's stored mean source at (S, v, l) and density ρ; below the table's least
 // density the source is taken proportional to ρ (it vanishes with the medium).
@@ -190,6 +192,15 @@ void main() {
         multiple = mix(own, cloud, weight);
       } else {
         multiple = own;
+      }
+      // the diffusion volume's share of the multiple light, where it has a field
+      // (diffusionShareOfMultiple): the diffuse field at x̄ scattered toward the camera
+      // (diffusedRadiance) times the chord's opacity, times the diffusion's gain
+      bool inGrid;
+      vec4 field = diffusionFieldAt(xMean, inGrid);
+      if (inGrid) {
+        float diffused = uDiffusionGain * chordOpacity(tau) * diffusedRadiance(field.x, field.yzw, -dir, uLaterAsymmetry);
+        multiple = mix(multiple, diffused, diffusionShareOfMultiple(uDiffusionShare, weight, dot(dir, uSunDirection)));
       }
     }
   }

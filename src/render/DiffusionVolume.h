@@ -1,0 +1,50 @@
+#pragma once
+// The diffusion pass (shaders/diffusion_volume.comp.glsl, docs/LIGHTING.md "Diffusion of the
+// multiply scattered light"): per frame, the multiply scattered light of the particles as the
+// solution of the flux-limited diffusion equation on the nodes of a vertical column volume
+// (a SunVolume built toward +y over the particles' bounds, whose optical depths give the
+// extinction), lit through the sun volume. The particle shader reads the fluence and flux at
+// each fragment's mean scattering point (shaders/diffusion_sampling.glsl) and takes that share of
+// its multiple scattering from it.
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "render/GlContext.h"
+#include "render/GlFunctions.h"
+#include "render/GlResources.h"
+#include "render/SunVolume.h"
+
+namespace cloudlut::render {
+
+class DiffusionVolume {
+ public:
+  DiffusionVolume(const GlFunctions& gl, const GlContext& context);
+  ~DiffusionVolume();
+  DiffusionVolume(const DiffusionVolume&) = delete;
+  DiffusionVolume& operator=(const DiffusionVolume&) = delete;
+
+  // Solves over the nodes of `columns` (one cascade, columns toward +y) lit through `sun` (bound
+  // to texture unit `sunUnit` for the solve), for a later phase function of mean cosine g, with
+  // `iterations` red-black over-relaxed Gauss-Seidel sweeps.
+  void build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry, int iterations);
+  // Binds the field to `unit` and sets diffusion_sampling.glsl's uniforms; without a build
+  // (or after clear()) the shader reads no field.
+  void bind(const ProgramUniforms& uniforms, int unit) const;
+  void clear() { built_ = false; }
+  bool built() const { return built_; }
+  // φ, J per node (4 floats, x fastest), for the tests.
+  std::vector<float> readBack() const;
+  glm::ivec3 nodes() const { return nodes_; }
+
+ private:
+  const GlFunctions& gl_;
+  const GlContext& context_;
+  GlProgram stages_[3];
+  GLuint medium_ = 0, field_ = 0, flux_ = 0;  // σ* and q; φ and D; φ and J (the shader's)
+  glm::ivec3 nodes_{0};
+  glm::mat4 worldToNode_{1.0f};
+  bool built_ = false;
+};
+
+}  // namespace cloudlut::render

@@ -1,0 +1,95 @@
+// diffusion_volume.comp.glsl — the multiply scattered light of a cloud as flux-limited diffusion
+// (render/DiffusionVolume.h, docs/LIGHTING.md "Diffusion of the multiply scattered light"), solved
+// on the nodes of a vertical column volume (render/SunVolume built toward +y: a node holds τ, the
+// optical depth of the cloud above it) and lit through the sun volume. Preceded by the files of
+// sun_volume_sampling.glsl (sunOpticalDepth) and cloudlut_shading.glsl (the diffusion functions).
+// All lengths in world units; φ is the fluence per unit sun irradiance (dimensionless: W/m² of
+// fluence per W/m² of irradiance), q its source per world unit.
+//   STAGE 0  per node: σ* (δ-Eddington scaled extinction) and q, the scaled beam's loss across
+//            the node's cell; the field starts at φ = 0 with D = 1/(3σ*(1 − g*) + 1/h).
+//   STAGE 1  half a sweep (the nodes of one colour, red-black) of successive over-relaxation of
+//            −∇·(D∇φ) = q (7-point, harmonic mean of D across each face, Marshak's vacuum
+//            condition on the grid's faces, marshakExitCoefficient), in place; D from the field
+//            by Wilson's flux limiter (diffusionCoefficient).
+//   STAGE 2  φ and the flux J = −D∇φ (world axes) for the particle shader.
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+uniform sampler3D uColumnTau;  // the vertical volume's τ, one cascade (texel = node)
+uniform ivec3 uNodes;          // nodes per grid axis
+uniform mat4 uNodeToWorld;     // node (i, j, k) → world point
+uniform mat4 uWorldToNode;     // the inverse
+uniform vec3 uSpacing;         // world distance between neighbouring nodes along each grid axis
+uniform int uVerticalAxis;     // the grid axis of the columns (their slices)
+uniform float uLaterAsymmetry; // g of the later phase function
+uniform int uColour;            // STAGE 1: the nodes (i + j + k) mod 2 = uColour are updated
+uniform float uOverRelaxation;  // STAGE 1: successive over-relaxation factor ω in [1, 2)
+
+layout(rg32f, binding = 0) uniform image3D uMedium;  // σ*, q
+layout(rg32f, binding = 1) uniform image3D uField;   // φ, D
+layout(rgba32f, binding = 3) uniform image3D uFlux;   // φ, J (STAGE 2)
+
+bool outside(ivec3 n) { return any(lessThan(n, ivec3(0))) || any(greaterThanEqual(n, uNodes)); }
+
+void main() {
+  ivec3 n = ivec3(gl_GlobalInvocationID);
+  if (outside(n)) return;
+  float f = deltaEddingtonForwardShare(uLaterAsymmetry);
+  float gStar = deltaEddingtonAsymmetry(uLaterAsymmetry);
+  float hMin = min(uSpacing.x, min(uSpacing.y, uSpacing.z));
+#if STAGE == 0
+  // σ from the vertical volume: τ falls toward +y by σ per unit length (central difference)
+  ivec3 up = n, down = n;
+  up[uVerticalAxis] = min(n[uVerticalAxis] + 1, uNodes[uVerticalAxis] - 1);
+  down[uVerticalAxis] = max(n[uVerticalAxis] - 1, 0);
+  float span = float(up[uVerticalAxis] - down[uVerticalAxis]) * uSpacing[uVerticalAxis];
+  float sigma = span > 0.0 ? max(texelFetch(uColumnTau, down, 0).r - texelFetch(uColumnTau, up, 0).r, 0.0) / span : 0.0;
+  float sigmaStar = (1.0 - f) * sigma;
+  vec3 x = (uNodeToWorld * vec4(vec3(n), 1.0)).xyz;
+  float near = (1.0 - f) * sunOpticalDepth(x + 0.5 * hMin * uSunColumns);
+  float far = (1.0 - f) * sunOpticalDepth(x - 0.5 * hMin * uSunColumns);
+  float q = max(exp(-near) - exp(-far), 0.0) / hMin;
+  imageStore(uMedium, n, vec4(sigmaStar, q, 0.0, 0.0));
+  imageStore(uField, n, vec4(0.0, diffusionCoefficient(sigmaStar * (1.0 - gStar), 1.0 / hMin), 0.0, 0.0));
+#else
+#if STAGE == 1
+  if (((n.x + n.y + n.z) & 1) != uColour) return;  // red-black: this sweep updates one colour
+#endif
+  vec2 medium = imageLoad(uMedium, n).xy;
+  vec2 c = imageLoad(uField, n).xy;
+  float diagonal = 0.0, sum = medium.y;
+  vec3 gradient = vec3(0.0);  // per grid axis, world units
+  for (int a = 0; a < 3; ++a) {
+    float h = uSpacing[a];
+    float phiSide[2];
+    for (int s = 0; s < 2; ++s) {
+      ivec3 k = n;
+      k[a] += 2 * s - 1;
+      if (outside(k)) {  // the grid's face: Marshak's condition, flux out = marshakExitCoefficient · φ
+        diagonal += marshakExitCoefficient(c.y, h) / h;
+        phiSide[s] = c.x;
+        continue;
+      }
+      vec2 m = imageLoad(uField, k).xy;
+      float face = 2.0 * c.y * m.y / max(c.y + m.y, 1e-30) / (h * h);
+      diagonal += face;
+      sum += face * m.x;
+      phiSide[s] = m.x;
+    }
+    gradient[a] = (phiSide[1] - phiSide[0]) / (2.0 * h);
+  }
+#if STAGE == 1
+  float phi = mix(c.x, sum / max(diagonal, 1e-30), uOverRelaxation);
+  float extent = max(float(uNodes.x) * uSpacing.x, max(float(uNodes.y) * uSpacing.y, float(uNodes.z) * uSpacing.z));
+  // |∇φ|/φ, between 1/(the grid's extent) and 1/h: a node still dark while its neighbours are lit
+  // (the first sweeps) must not take D → 0, and no gradient the grid resolves is steeper
+  float ratio = clamp(length(gradient) / max(c.x, 1e-30), 1.0 / extent, 1.0 / hMin);
+  imageStore(uField, n, vec4(phi, diffusionCoefficient(medium.x * (1.0 - gStar), ratio), 0.0, 0.0));
+#else
+  // grid axes → world: ∇_world φ = Gᵀ ∇_grid φ, G the world → node map's linear part
+  vec3 perNode = gradient * uSpacing;
+  vec3 world = transpose(mat3(uWorldToNode)) * perNode;
+  imageStore(uFlux, n, vec4(c.x, -c.y * world));
+#endif
+#endif
+}
