@@ -109,7 +109,8 @@ TEST_CASE("lighting: the cloud model meets the path tracer where the seed's mode
 // The diffusion volume (render/DiffusionVolume.h, docs/LIGHTING.md): on the bench's 40-particle
 // cloudscape (three heaps) the tables' spheres leave each heap's shadowed half too dark; the
 // flux-limited diffusion solve over the particles lets the light through. Measured at 96×64
-// (the ground-truth suite's references): 14.8% (bias −7.8%) without, 8.7% (−2.2%) with.
+// (the ground-truth suite): 14.8% (bias −7.8%) without, 7.7% (+0.2%) with; at this fixture's
+// 64×44 the reference's noise (23% at 128 paths) hid the error with it, hence 384 paths.
 TEST_CASE("lighting: the diffusion volume brings a cloud of heaps closer to the path tracer", "[render][lighting]") {
   const Medium medium;
   RenderFixture rig = RenderFixture::defaultMedium(0);
@@ -142,7 +143,9 @@ TEST_CASE("lighting: the angular closure brings a dense particle within the issu
   Judged j[2];
   for (const bool closure : {false, true}) {
     RenderFixture rig = RenderFixture::defaultMedium(0, closure);
-    j[closure] = judge(rig.renderer.render(s.particles, settingsFor(view, kWidth, kHeight, render::LightingModel::Cloud)), ref);
+    render::RenderSettings rs = settingsFor(view, kWidth, kHeight, render::LightingModel::Cloud);
+    rs.diffusionShare = 0.0f;  // the closure is the tables' (with the diffusion volume: 6.8%, bias −2.4%)
+    j[closure] = judge(rig.renderer.render(s.particles, rs), ref);
   }
   std::printf("one-rho4: ref noise %.3f  without the closure nc_rel_rmse %.3f bias %+.3f  with it %.3f bias %+.3f\n",
               j[0].refNoise, j[0].ncRelRmse, j[0].relBias, j[1].ncRelRmse, j[1].relBias);
@@ -289,12 +292,14 @@ TEST_CASE("lighting: no step between overlapping particles that the path tracer 
   const std::vector<double> refSe = boxMean(ref.channel("stderr.R"), kW, kH, 1, true);
   const std::vector<float>& refA = ref.channel("A");
 
-  int steps[2] = {0, 0}, pairs = 0;
-  double worst[2] = {-1, -1};
-  for (const render::LightingModel lighting : {render::LightingModel::Seed, render::LightingModel::Cloud}) {
-    const std::vector<double> r = boxMean(rig.renderer.render(s.particles, settingsFor(view, kW, kH, lighting)).rgba,
-                                          kW, kH, 4, false);
-    const int m = lighting == render::LightingModel::Cloud;
+  // the seed's model, the cloud model's tables alone, and the cloud model with the diffusion volume
+  int steps[3] = {0, 0, 0}, pairs = 0;
+  double worst[3] = {-1, -1, -1};
+  for (int m = 0; m < 3; ++m) {
+    render::RenderSettings rs =
+        settingsFor(view, kW, kH, m == 0 ? render::LightingModel::Seed : render::LightingModel::Cloud);
+    if (m == 1) rs.diffusionShare = 0.0f;
+    const std::vector<double> r = boxMean(rig.renderer.render(s.particles, rs).rgba, kW, kH, 4, false);
     pairs = 0;
     for (int y = 0; y < kH; ++y) {
       for (int x = 0; x < kW; ++x) {
@@ -310,9 +315,14 @@ TEST_CASE("lighting: no step between overlapping particles that the path tracer 
       }
     }
   }
-  std::printf("steps beyond the path tracer's (of %d neighbour pairs): seed %d (worst excess %+.4f), cloud %d "
-              "(%+.4f)\n", pairs, steps[0], worst[0], steps[1], worst[1]);
+  std::printf("steps beyond the path tracer's (of %d neighbour pairs): seed %d (worst excess %+.4f), cloud tables %d "
+              "(%+.4f), cloud with diffusion %d (%+.4f)\n", pairs, steps[0], worst[0], steps[1], worst[1], steps[2],
+              worst[2]);
   REQUIRE(pairs > 500);
   CHECK(steps[1] == 0);
+  // The diffusion's share changes with each particle's cloud weight (diffusionShareOfMultiple), so
+  // where the two overlap it may step a little: measured one pair, by 0.0006 beyond the margin.
+  CHECK(worst[2] < 0.002);
+  CHECK(steps[2] <= 3);
   CHECK(steps[0] >= 5);
 }

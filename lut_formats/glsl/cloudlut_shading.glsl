@@ -317,12 +317,12 @@ CLOUDLUT_FN float diffusedRadiance(float phi, vec3 flux, vec3 omega, float g) {
 
 // Share of a fragment's multiple light taken from the diffusion field rather than the tables
 // (dimensionless): `share` (the renderer's setting) where the particle lies deep in a cloud
-// (cloudWeight → 1, cloudScaleWeight), 0.3 of it where it stands alone (cloudWeight = 0: the
-// tables hold an isolated particle, a dense one better than a grid does), and fading as
+// (cloudWeight → 1, cloudScaleWeight), half of it where it stands alone (cloudWeight = 0: the
+// tables hold an isolated particle, a dense one better than the grid does), and fading as
 // (1 − μ)² with μ = max(v·l, 0) toward the sun: diffusion's P1 field has no forward peak, which
 // makes the light seen toward the sun (the backlit rim). Measured against the path tracer,
 // docs/LIGHTING.md ("Diffusion of the multiply scattered light").
 CLOUDLUT_FN float diffusionShareOfMultiple(float share, float cloudWeight, float viewDotSun) {
   float mu = clamp(viewDotSun, 0.0f, 1.0f);
-  return share * (0.3f + 0.7f * clamp(cloudWeight, 0.0f, 1.0f)) * (1.0f - mu) * (1.0f - mu);
+  return share * (0.5f + 0.5f * clamp(cloudWeight, 0.0f, 1.0f)) * (1.0f - mu) * (1.0f - mu);
 }

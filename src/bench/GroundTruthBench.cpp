@@ -5,7 +5,8 @@
 // Rows: method "path-traced" (the reference itself: seconds, and in error_mean the RMS of its
 // per-pixel standard error over the cloud pixels, i.e. its noise floor), "lut-alpha" and "lut-volume" (the
 // particle renderer from tables baked at reduced resolution, alpha or volume-aware blending,
-// with the cloud lighting model; "-seed" appended: the seed's model; "-18" appended: 18-order
+// with the cloud lighting model; "-seed" appended: the seed's model; "-tables": the cloud model
+// without the diffusion volume (docs/LIGHTING.md); "-18" appended: 18-order
 // instead of converged multiple scattering), "raymarch" and
 // "raymarch-adaptive" at several step counts; and the steady-state frame times of
 // bench/FrameTime.h ("frame-lut-volume", "frame-raymarch", at 1280×720). error_mean = RMSE of R, G, B over the cloud
@@ -323,24 +324,30 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
 
     for (const LutRenderer& lr : lutRenderers)
       for (const render::LightingModel lighting : {render::LightingModel::Cloud, render::LightingModel::Seed})
-        for (const render::BlendMode blend : {render::BlendMode::Alpha, render::BlendMode::Volume}) {
-          render::RenderSettings rs;
-          rs.width = width;
-          rs.height = height;
-          rs.view = view;
-          rs.blend = blend;
-          rs.lighting = lighting;
-          rs.sunlight = render::defaultSunlight(lighting);
-          render::Image img;
-          const double t =
-              best([&](render::RenderStats* s) { return lr.renderer->render(scene.particles, rs, s); }, img);
-          const std::string method = std::string(blend == render::BlendMode::Alpha ? "lut-alpha" : "lut-volume") +
-                                     (lighting == render::LightingModel::Seed ? "-seed" : "") + lr.suffix;
-          addRow(method, 0, img, t,
-                 std::string("; lighting ") + toString(lighting) + ", sunlight " + toString(rs.sunlight) + ", tables " +
-                     lr.luts->tables.at("multiple_scattering").table.name() +
-                     (lr.suffix.empty() ? " converged" : " 18 orders") + ", reduced resolution");
-        }
+        for (const render::BlendMode blend : {render::BlendMode::Alpha, render::BlendMode::Volume})
+          for (const bool diffusion : {true, false}) {
+            // the cloud model without the diffusion volume ("-tables"): volume blending only
+            if (!diffusion && (lighting != render::LightingModel::Cloud || blend != render::BlendMode::Volume)) continue;
+            render::RenderSettings rs;
+            rs.width = width;
+            rs.height = height;
+            rs.view = view;
+            rs.blend = blend;
+            rs.lighting = lighting;
+            rs.sunlight = render::defaultSunlight(lighting);
+            if (!diffusion) rs.diffusionShare = 0.0f;
+            render::Image img;
+            const double t =
+                best([&](render::RenderStats* s) { return lr.renderer->render(scene.particles, rs, s); }, img);
+            const std::string method = std::string(blend == render::BlendMode::Alpha ? "lut-alpha" : "lut-volume") +
+                                       (lighting == render::LightingModel::Seed ? "-seed" : "") +
+                                       (diffusion ? "" : "-tables") + lr.suffix;
+            addRow(method, 0, img, t,
+                   std::string("; lighting ") + toString(lighting) + ", sunlight " + toString(rs.sunlight) +
+                       (lighting == render::LightingModel::Cloud ? (diffusion ? ", diffusion" : ", no diffusion") : "") +
+                       ", tables " + lr.luts->tables.at("multiple_scattering").table.name() +
+                       (lr.suffix.empty() ? " converged" : " 18 orders") + ", reduced resolution");
+          }
     for (const bool adaptive : {false, true})
       for (const int n : steps) {
         render::RayMarchSettings rm;

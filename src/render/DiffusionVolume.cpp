@@ -17,6 +17,7 @@ constexpr unsigned kGroup = 4;  // the shader's local size per axis
 // Successive over-relaxation of the red-black sweeps: 1.8 reached on the 1419-particle patch in
 // 800 sweeps what plain Gauss-Seidel had not in 1600 (docs/LIGHTING.md).
 constexpr float kOverRelaxation = 1.8f;
+constexpr int kCoarseUnit = 2;  // texture unit of the coarser level's field (prolongation)
 
 void deleteTexture(const GlFunctions& gl, GLuint& t) {
   if (t) gl.DeleteTextures(1, &t);
@@ -26,22 +27,37 @@ void deleteTexture(const GlFunctions& gl, GLuint& t) {
 }  // namespace
 
 DiffusionVolume::DiffusionVolume(const GlFunctions& gl, const GlContext& context) : gl_(gl), context_(context) {
-  for (int stage = 0; stage < 3; ++stage)
+  for (int stage = 0; stage < 5; ++stage)
     stages_[stage] = linkComputeProgram(gl, kFiles, glslDefine("STAGE", stage) + SunVolume::samplingDefines());
 }
 
-DiffusionVolume::~DiffusionVolume() {
-  for (GLuint* t : {&medium_, &field_, &flux_}) deleteTexture(gl_, *t);
+DiffusionVolume::~DiffusionVolume() { release(); }
+
+void DiffusionVolume::release() {
+  for (Level& l : levels_) {
+    deleteTexture(gl_, l.medium);
+    deleteTexture(gl_, l.field);
+    l.nodes = glm::ivec3(0);
+  }
+  deleteTexture(gl_, flux_);
+  levelCount_ = 0;
 }
 
 void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry,
-                            int iterations) {
+                            int sweeps) {
   const SunVolumeGrid& grid = columns.grid();
   const glm::ivec3 n = grid.dims;
   if (n != nodes_) {
-    for (GLuint* t : {&medium_, &field_, &flux_}) deleteTexture(gl_, *t);
-    medium_ = createFloatTexture3D(gl_, context_, "the diffusion volume", n.x, n.y, n.z, 2, nullptr);
-    field_ = createFloatTexture3D(gl_, context_, "the diffusion volume", n.x, n.y, n.z, 2, nullptr);
+    release();
+    // levels while the coarser one keeps at least 6 nodes per side
+    glm::ivec3 dims = n;
+    for (int l = 0; l < kLevels && (l == 0 || glm::all(glm::greaterThanEqual(dims, glm::ivec3(6)))); ++l) {
+      levels_[l].nodes = dims;
+      levels_[l].medium = createFloatTexture3D(gl_, context_, "the diffusion volume", dims.x, dims.y, dims.z, 2, nullptr);
+      levels_[l].field = createFloatTexture3D(gl_, context_, "the diffusion volume", dims.x, dims.y, dims.z, 2, nullptr);
+      levelCount_ = l + 1;
+      dims = (dims + 1) / 2;
+    }
     flux_ = createFloatTexture3D(gl_, context_, "the diffusion volume", n.x, n.y, n.z, 4, nullptr);
     nodes_ = n;
   }
@@ -49,8 +65,7 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
   const glm::mat4& toWorld = grid.toWorld[0];
   const glm::vec3 spacing(glm::length(glm::vec3(toWorld[0])), glm::length(glm::vec3(toWorld[1])),
                           glm::length(glm::vec3(toWorld[2])));
-  const GLuint groups[3] = {groupsFor(n.x, kGroup), groupsFor(n.y, kGroup), groupsFor(n.z, kGroup)};
-  const auto use = [&](int stage) {
+  const auto use = [&](int stage, int level) {
     const GlProgram& p = stages_[stage];
     gl_.UseProgram(p.id());
     const ProgramUniforms u(gl_, p.id());
@@ -58,33 +73,50 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
     gl_.BindTexture(GL_TEXTURE_3D, columns.texture());
     u.set("uColumnTau", 0);
     sun.bind(u, sunUnit);
-    gl_.Uniform3i(p.uniform("uNodes"), n.x, n.y, n.z);
+    const glm::ivec3 d = levels_[level].nodes;
+    gl_.Uniform3i(p.uniform("uNodes"), d.x, d.y, d.z);
     gl_.UniformMatrix4fv(p.uniform("uNodeToWorld"), 1, GL_FALSE, glm::value_ptr(toWorld));
     gl_.UniformMatrix4fv(p.uniform("uWorldToNode"), 1, GL_FALSE, glm::value_ptr(worldToNode_));
-    u.set("uSpacing", spacing);
+    u.set("uSpacing", spacing * static_cast<float>(1 << level));
     u.set("uVerticalAxis", 2);
     u.set("uLaterAsymmetry", laterAsymmetry);
+    u.set("uOverRelaxation", kOverRelaxation);
+    gl_.BindImageTexture(0, levels_[level].medium, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
+    gl_.BindImageTexture(1, levels_[level].field, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
+    return d;
   };
-  const auto dispatch = [&] {
-    gl_.DispatchCompute(groups[0], groups[1], groups[2]);
+  const auto dispatch = [&](const glm::ivec3& d) {
+    gl_.DispatchCompute(groupsFor(d.x, kGroup), groupsFor(d.y, kGroup), groupsFor(d.z, kGroup));
     gl_.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   };
-  gl_.BindImageTexture(0, medium_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
-  use(0);
-  gl_.BindImageTexture(1, field_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
-  dispatch();
-  use(1);
-  gl_.Uniform1f(stages_[1].uniform("uOverRelaxation"), kOverRelaxation);
-  gl_.BindImageTexture(1, field_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
-  for (int i = 0; i < iterations; ++i)
-    for (int colour = 0; colour < 2; ++colour) {
-      gl_.Uniform1i(stages_[1].uniform("uColour"), colour);
-      dispatch();
+  dispatch(use(0, 0));  // the finest level's medium and source
+  for (int l = 1; l < levelCount_; ++l) {  // the coarser ones, each from the one finer
+    const glm::ivec3 d = use(3, l);
+    const glm::ivec3 fine = levels_[l - 1].nodes;
+    gl_.Uniform3i(stages_[3].uniform("uFineNodes"), fine.x, fine.y, fine.z);
+    gl_.BindImageTexture(2, levels_[l - 1].medium, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RG32F);
+    dispatch(d);
+  }
+  for (int l = levelCount_ - 1; l >= 0; --l) {
+    if (l < levelCount_ - 1) {  // start from the coarser level's solution
+      const glm::ivec3 d = use(4, l);
+      const glm::ivec3 coarse = levels_[l + 1].nodes;
+      gl_.Uniform3i(stages_[4].uniform("uCoarseNodes"), coarse.x, coarse.y, coarse.z);
+      gl_.ActiveTexture(GL_TEXTURE0 + kCoarseUnit);
+      gl_.BindTexture(GL_TEXTURE_3D, levels_[l + 1].field);
+      ProgramUniforms(gl_, stages_[4].id()).set("uCoarseField", kCoarseUnit);
+      dispatch(d);
     }
-  use(2);
-  gl_.BindImageTexture(1, field_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
+    const glm::ivec3 d = use(1, l);
+    for (int i = 0; i < sweeps << l; ++i)
+      for (int colour = 0; colour < 2; ++colour) {
+        gl_.Uniform1i(stages_[1].uniform("uColour"), colour);
+        dispatch(d);
+      }
+  }
+  const glm::ivec3 d = use(2, 0);
   gl_.BindImageTexture(3, flux_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
-  dispatch();
+  dispatch(d);
   for (GLuint unit = 0; unit < 4; ++unit) gl_.BindImageTexture(unit, 0, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
   checkGlError(gl_, "solving the diffusion volume");
   built_ = true;

@@ -4,10 +4,11 @@
 // solution of the flux-limited diffusion equation on the nodes of a vertical column volume
 // (a SunVolume built toward +y over the particles' bounds, whose optical depths give the
 // extinction), lit through the sun volume. The particle shader reads the fluence and flux at
-// each fragment's mean scattering point (shaders/diffusion_sampling.glsl) and takes that share of
-// its multiple scattering from it.
+// each fragment's mean scattering point (shaders/diffusion_sampling.glsl) and takes a share of
+// its multiple scattering from it (diffusionShareOfMultiple, cloudlut_shading.glsl).
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include "render/GlContext.h"
@@ -25,9 +26,11 @@ class DiffusionVolume {
   DiffusionVolume& operator=(const DiffusionVolume&) = delete;
 
   // Solves over the nodes of `columns` (one cascade, columns toward +y) lit through `sun` (bound
-  // to texture unit `sunUnit` for the solve), for a later phase function of mean cosine g, with
-  // `iterations` red-black over-relaxed Gauss-Seidel sweeps.
-  void build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry, int iterations);
+  // to texture unit `sunUnit` for the solve), for a later phase function of mean cosine g: coarse
+  // to fine over up to kLevels levels (each halving the nodes per side), `sweeps` red-black
+  // over-relaxed Gauss-Seidel sweeps on the finest and twice as many on each coarser one.
+  void build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry, int sweeps);
+  static constexpr int kLevels = 3;
   // Binds the field to `unit` and sets diffusion_sampling.glsl's uniforms; without a build
   // (or after clear()) the shader reads no field.
   void bind(const ProgramUniforms& uniforms, int unit) const;
@@ -40,8 +43,15 @@ class DiffusionVolume {
  private:
   const GlFunctions& gl_;
   const GlContext& context_;
-  GlProgram stages_[3];
-  GLuint medium_ = 0, field_ = 0, flux_ = 0;  // σ* and q; φ and D; φ and J (the shader's)
+  GlProgram stages_[5];  // diffusion_volume.comp.glsl's STAGE 0 … 4
+  struct Level {
+    GLuint medium = 0, field = 0;  // σ* and q; φ and D
+    glm::ivec3 nodes{0};
+  };
+  void release();
+  Level levels_[kLevels];
+  int levelCount_ = 0;
+  GLuint flux_ = 0;  // φ and J on the finest level (the shader's)
   glm::ivec3 nodes_{0};
   glm::mat4 worldToNode_{1.0f};
   bool built_ = false;

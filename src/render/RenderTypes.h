@@ -78,14 +78,15 @@ struct RenderSettings {
   // particle shader reads them to take each particle's own ramp out; false: the shader computes
   // them again (the same image, slower: for timing).
   bool sunChordMap = true;
-  // Cloud lighting of explicit particles (experimental, docs/LIGHTING.md): the share of the
-  // multiple light taken from the diffusion volume (render/DiffusionVolume.h; 0: none, the pass
-  // is skipped; diffusionShareOfMultiple), the sweeps of its solve and its node spacing in units
-  // of the smallest particle radius. The gain calibrates the diffusion's low bias: 1/0.855, the
-  // prototype's −14.5% on the homogeneous ρ = 1 sphere against the converged tables.
-  float diffusionShare = 0.0f;
-  int diffusionIterations = 800;
-  float diffusionSpacing = 0.2f;
+  // Cloud lighting of explicit particles: the share of the multiple light taken from the
+  // diffusion volume (render/DiffusionVolume.h, docs/LIGHTING.md; 0: the tables' alone, the pass is
+  // skipped; diffusionShareOfMultiple), the sweeps of its solve on its finest level
+  // (DiffusionVolume::build) and its node spacing in units of the median particle radius. The
+  // gain calibrates the diffusion's low bias: 1/0.855, the prototype's −14.5% on the homogeneous
+  // ρ = 1 sphere against the converged tables.
+  float diffusionShare = 1.0f;
+  int diffusionIterations = 30;
+  float diffusionSpacing = 0.5f;
   float diffusionGain = 1.2f;
   LightingModel lighting = LightingModel::Cloud;
   SunlightModel sunlight = SunlightModel::Volume;

@@ -328,20 +328,24 @@ struct Renderer::Impl {
     return none;
   }
   // The diffusion volume's nodes: vertical columns over the particles' bounds and three spacings
-  // beyond (clear air, where the light leaves), the spacing s.diffusionSpacing times the smallest
-  // radius or what 128 nodes per side need.
+  // beyond (clear air, where the light leaves), the spacing s.diffusionSpacing times the median
+  // particle radius (its least semi-axis) or what kDiffusionNodes per side need, up to twice that;
+  // none (no diffusion) for a scene wider than that.
   static SunVolumeGrid diffusionGridFor(const std::vector<scene::Particle>& list, const RenderSettings& s) {
     if (list.empty() || s.diffusionShare <= 0.0f) return noDiffusionGrid();
     glm::vec3 lo = list[0].center, hi = list[0].center;
-    float smallest = INFINITY;
+    std::vector<float> radii;
     for (const scene::Particle& p : list) {
       const float reach = std::max({p.radii.x, p.radii.y, p.radii.z});
       lo = glm::min(lo, p.center - reach);
       hi = glm::max(hi, p.center + reach);
-      smallest = std::min({smallest, p.radii.x, p.radii.y, p.radii.z});
+      radii.push_back(std::min({p.radii.x, p.radii.y, p.radii.z}));
     }
-    float spacing = s.diffusionSpacing * smallest;
-    spacing = std::max(spacing, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / static_cast<float>(kDiffusionNodes - 9));
+    std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2), radii.end());
+    const float wanted = s.diffusionSpacing * radii[radii.size() / 2];
+    const float spacing =
+        std::max(wanted, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / static_cast<float>(kDiffusionNodes - 9));
+    if (spacing > 2.0f * wanted) return noDiffusionGrid();  // too wide a scene (a dumped cloudscape): the tables
     return sunVolumeGridForBounds(lo - 3.0f * spacing, hi + 3.0f * spacing, kZenith, spacing, kDiffusionNodes,
                                   kDiffusionNodes);
   }

@@ -12,6 +12,11 @@
 //            condition on the grid's faces, marshakExitCoefficient), in place; D from the field
 //            by Wilson's flux limiter (diffusionCoefficient).
 //   STAGE 2  φ and the flux J = −D∇φ (world axes) for the particle shader.
+//   STAGE 3  one level coarser (coarse node I at fine node 2I, spacing doubled): σ* and q as the
+//            full-weighting average of the fine nodes around, the field started as in STAGE 0.
+//   STAGE 4  the coarse level's solution, trilinear, as the start of the finer level's sweeps.
+// The solve runs coarse to fine (render/DiffusionVolume.cpp): the coarsest level's sweeps carry
+// the light across the cloud, each finer level's only the detail.
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
@@ -27,7 +32,11 @@ uniform float uOverRelaxation;  // STAGE 1: successive over-relaxation factor ω
 
 layout(rg32f, binding = 0) uniform image3D uMedium;  // σ*, q
 layout(rg32f, binding = 1) uniform image3D uField;   // φ, D
+layout(rg32f, binding = 2) uniform image3D uFineMedium;  // STAGE 3: the finer level's σ*, q
 layout(rgba32f, binding = 3) uniform image3D uFlux;   // φ, J (STAGE 2)
+uniform ivec3 uFineNodes;       // STAGE 3: the finer level's nodes
+uniform sampler3D uCoarseField; // STAGE 4: the coarser level's φ, D (texel = node)
+uniform ivec3 uCoarseNodes;     // STAGE 4
 
 bool outside(ivec3 n) { return any(lessThan(n, ivec3(0))) || any(greaterThanEqual(n, uNodes)); }
 
@@ -51,6 +60,24 @@ void main() {
   float q = max(exp(-near) - exp(-far), 0.0) / hMin;
   imageStore(uMedium, n, vec4(sigmaStar, q, 0.0, 0.0));
   imageStore(uField, n, vec4(0.0, diffusionCoefficient(sigmaStar * (1.0 - gStar), 1.0 / hMin), 0.0, 0.0));
+#elif STAGE == 3
+  vec2 sum = vec2(0.0);
+  float weights = 0.0;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        ivec3 k = 2 * n + ivec3(dx, dy, dz);
+        if (any(lessThan(k, ivec3(0))) || any(greaterThanEqual(k, uFineNodes))) continue;
+        float w = float((2 - abs(dx)) * (2 - abs(dy)) * (2 - abs(dz)));
+        sum += w * imageLoad(uFineMedium, k).xy;
+        weights += w;
+      }
+  vec2 medium = sum / max(weights, 1e-30);
+  imageStore(uMedium, n, vec4(medium, 0.0, 0.0));
+  imageStore(uField, n, vec4(0.0, diffusionCoefficient(medium.x * (1.0 - gStar), 1.0 / hMin), 0.0, 0.0));
+#elif STAGE == 4
+  vec3 g = min(vec3(n) * 0.5, vec3(uCoarseNodes) - 1.0);
+  imageStore(uField, n, vec4(texture(uCoarseField, (g + 0.5) / vec3(uCoarseNodes)).xy, 0.0, 0.0));
 #else
 #if STAGE == 1
   if (((n.x + n.y + n.z) & 1) != uColour) return;  // red-black: this sweep updates one colour
