@@ -138,8 +138,8 @@ int runRender(int argc, char** argv) {
   if (!(spacing >= 0.01 && spacing <= 10.0)) throw UsageError("--diffusion-spacing: expected 0.01 to 10 particle radii");
   settings.diffusionShare = static_cast<float>(diffusion);
   settings.diffusionSpacing = static_cast<float>(spacing);
-  settings.diffusionIterations = args["diffusion-sweeps"].as<int>();
-  if (settings.diffusionIterations < 1 || settings.diffusionIterations > 100000)
+  settings.diffusionSweeps = args["diffusion-sweeps"].as<int>();
+  if (settings.diffusionSweeps < 1 || settings.diffusionSweeps > 100000)
     throw UsageError("--diffusion-sweeps: expected 1 to 100000");
   settings.lighting = render::parseLighting(args["lighting"].as<std::string>());
   settings.sunlight = args.count("sunlight") ? render::parseSunlight(args["sunlight"].as<std::string>())

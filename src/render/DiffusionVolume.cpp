@@ -19,11 +19,6 @@ constexpr unsigned kGroup = 4;  // the shader's local size per axis
 constexpr float kOverRelaxation = 1.8f;
 constexpr int kCoarseUnit = 2;  // texture unit of the coarser level's field (prolongation)
 
-void deleteTexture(const GlFunctions& gl, GLuint& t) {
-  if (t) gl.DeleteTextures(1, &t);
-  t = 0;
-}
-
 }  // namespace
 
 DiffusionVolume::DiffusionVolume(const GlFunctions& gl, const GlContext& context) : gl_(gl), context_(context) {
@@ -78,7 +73,6 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
     gl_.UniformMatrix4fv(p.uniform("uNodeToWorld"), 1, GL_FALSE, glm::value_ptr(toWorld));
     gl_.UniformMatrix4fv(p.uniform("uWorldToNode"), 1, GL_FALSE, glm::value_ptr(worldToNode_));
     u.set("uSpacing", spacing * static_cast<float>(1 << level));
-    u.set("uVerticalAxis", 2);
     u.set("uLaterAsymmetry", laterAsymmetry);
     u.set("uOverRelaxation", kOverRelaxation);
     gl_.BindImageTexture(0, levels_[level].medium, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
@@ -136,6 +130,21 @@ std::vector<float> DiffusionVolume::readBack() const {
   if (!flux_) return out;
   gl_.BindTexture(GL_TEXTURE_3D, flux_);
   gl_.GetTexImage(GL_TEXTURE_3D, 0, GL_RGBA, GL_FLOAT, out.data());
+  return out;
+}
+
+std::vector<float> DiffusionVolume::readSolve() const {
+  const std::size_t count = static_cast<std::size_t>(nodes_.x) * nodes_.y * nodes_.z;
+  std::vector<float> out(count * 4), pair(count * 2);
+  if (levelCount_ == 0) return out;
+  for (int part = 0; part < 2; ++part) {
+    gl_.BindTexture(GL_TEXTURE_3D, part == 0 ? levels_[0].medium : levels_[0].field);
+    gl_.GetTexImage(GL_TEXTURE_3D, 0, GL_RG, GL_FLOAT, pair.data());
+    for (std::size_t i = 0; i < count; ++i) {
+      out[4 * i + 2 * part] = pair[2 * i];
+      out[4 * i + 2 * part + 1] = pair[2 * i + 1];
+    }
+  }
   return out;
 }
 

@@ -36,9 +36,13 @@ class DiffusionVolume {
   void bind(const ProgramUniforms& uniforms, int unit) const;
   void clear() { built_ = false; }
   bool built() const { return built_; }
-  // φ, J per node (4 floats, x fastest), for the tests.
+  // φ (per unit sun irradiance) and J (world axes) per node, 4 floats, x fastest (the tests,
+  // through Renderer::diffusionVolume).
   std::vector<float> readBack() const;
-  glm::ivec3 nodes() const { return nodes_; }
+  // The finest level's solve per node, 4 floats, x fastest (the tests): σ* (the δ-Eddington-
+  // scaled extinction, 1/length), q (the scaled sun beam's loss per unit length per unit sun
+  // irradiance, 1/length), φ and D (length).
+  std::vector<float> readSolve() const;
 
  private:
   const GlFunctions& gl_;

@@ -61,6 +61,11 @@ GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> shaders,
   return program;
 }
 
+void deleteTexture(const GlFunctions& gl, GLuint& t) {
+  if (t) gl.DeleteTextures(1, &t);
+  t = 0;
+}
+
 GLuint createFloatTexture3D(const GlFunctions& gl, const GlContext& context, const std::string& what, long long width,
                             long long height, long long depth, int channels, const float* data) {
   GLint max3d = 0;

@@ -67,6 +67,9 @@ GlProgram linkDrawProgram(const GlFunctions& gl, const std::vector<std::string>&
 GLuint createFloatTexture3D(const GlFunctions& gl, const GlContext& context, const std::string& what, long long width,
                             long long height, long long depth, int channels, const float* data);
 
+// Deletes texture `t` when it is one (non-zero) and sets it to 0.
+void deleteTexture(const GlFunctions& gl, GLuint& t);
+
 // The uniforms of one program, set by name (a name the program lacks is ignored, as GL does
 // for location -1). The program must be in use when setting.
 class ProgramUniforms {

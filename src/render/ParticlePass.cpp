@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/DiffusionVolume.h"
 #include "render/SunVolume.h"
 #include "render/VolumeResolve.h"
 

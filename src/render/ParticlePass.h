@@ -16,10 +16,10 @@
 #include "render/GpuParticleRecord.h"
 #include "render/RenderTypes.h"
 #include "render/ShadingTables.h"
-#include "render/DiffusionVolume.h"
 
 namespace cloudlut::render {
 
+class DiffusionVolume;
 class SunVolume;
 
 class ParticlePass {

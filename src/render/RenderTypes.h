@@ -85,7 +85,7 @@ struct RenderSettings {
   // gain calibrates the diffusion's low bias: 1/0.855, the prototype's −14.5% on the homogeneous
   // ρ = 1 sphere against the converged tables.
   float diffusionShare = 1.0f;
-  int diffusionIterations = 30;
+  int diffusionSweeps = 30;
   float diffusionSpacing = 0.5f;
   float diffusionGain = 1.2f;
   LightingModel lighting = LightingModel::Cloud;

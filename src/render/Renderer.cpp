@@ -134,7 +134,7 @@ struct Renderer::Impl {
     if (sun && diffusionGrid.cascades == 1 && s.diffusionShare > 0.0f && (s.terms & kTermMultiple) != 0) {
       diffusionColumns.build(diffusionGrid, count, particles.tables().opticalDepthTexture(),
                              particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), false);
-      diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionIterations);
+      diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionSweeps);
     }
     gl.Finish();
     if (stats) {
@@ -374,6 +374,18 @@ struct Renderer::Impl {
     return {grid, sunVolume.readBack(), skipped};
   }
 
+  Renderer::DiffusionSnapshot diffusionOf(const std::vector<scene::Particle>& list, const RenderSettings& s) {
+    validate(s);
+    std::vector<std::size_t> order(list.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    upload.upload(list, order, s.view.camera.eye, glm::normalize(s.view.lighting.sunDirection));
+    const SunVolumeGrid grid = diffusionGridFor(list, s);
+    illuminate(list.size(), needsSunVolume(s) ? sunGridFor(list, s) : SunVolumeGrid{}, SunVolumeGrid{}, s, nullptr,
+               grid);
+    if (!diffusion.built()) return {grid, {}, {}};
+    return {grid, diffusion.readBack(), diffusion.readSolve()};
+  }
+
   std::vector<float> sunlight(const std::vector<scene::Particle>& list, const RenderSettings& s) {
     validate(s);
     std::vector<std::size_t> order(list.size());
@@ -419,6 +431,11 @@ std::vector<float> Renderer::sunlight(const std::vector<scene::Particle>& partic
 Renderer::SunVolumeSnapshot Renderer::sunVolume(const std::vector<scene::Particle>& particles,
                                                 const RenderSettings& settings, const SunVolumeGrid* grid) {
   return impl_->sunVolumeOf(particles, settings, grid);
+}
+
+Renderer::DiffusionSnapshot Renderer::diffusionVolume(const std::vector<scene::Particle>& particles,
+                                                      const RenderSettings& settings) {
+  return impl_->diffusionOf(particles, settings);
 }
 
 }  // namespace cloudlut::render

@@ -85,6 +85,17 @@ class Renderer {
   SunVolumeSnapshot sunVolume(const std::vector<scene::Particle>& particles, const RenderSettings& settings,
                               const SunVolumeGrid* grid = nullptr);
 
+  // The diffusion volume (render/DiffusionVolume.h) the cloud lighting solves for `particles`
+  // under `settings`: its grid (one cascade; its node n at toWorld[0]·n), per node φ and J
+  // (`field`, DiffusionVolume::readBack) and σ*, q, φ and D (`solve`, readSolve); both empty when
+  // the frame would get no field (a scene too wide for the grid, --diffusion 0, or no multiple
+  // term). For tests and tools.
+  struct DiffusionSnapshot {
+    SunVolumeGrid grid;
+    std::vector<float> field, solve;
+  };
+  DiffusionSnapshot diffusionVolume(const std::vector<scene::Particle>& particles, const RenderSettings& settings);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -27,11 +27,6 @@ std::vector<std::string> withFiles(std::vector<std::string> files, const std::ve
   return files;
 }
 
-void deleteTexture(const GlFunctions& gl, GLuint& t) {
-  if (t) gl.DeleteTextures(1, &t);
-  t = 0;
-}
-
 GLuint uploadTable(const GlFunctions& gl, const GlContext& context, const Table4D& t) {
   const auto d = t.dims();
   return createFloatTexture3D(gl, context, t.name(), d[0], d[1] * d[2], 1, 3, t.data().data());  // blocks stacked

@@ -25,7 +25,6 @@ uniform ivec3 uNodes;          // nodes per grid axis
 uniform mat4 uNodeToWorld;     // node (i, j, k) → world point
 uniform mat4 uWorldToNode;     // the inverse
 uniform vec3 uSpacing;         // world distance between neighbouring nodes along each grid axis
-uniform int uVerticalAxis;     // the grid axis of the columns (their slices)
 uniform float uLaterAsymmetry; // g of the later phase function
 uniform int uColour;            // STAGE 1: the nodes (i + j + k) mod 2 = uColour are updated
 uniform float uOverRelaxation;  // STAGE 1: successive over-relaxation factor ω in [1, 2)
@@ -38,7 +37,16 @@ uniform ivec3 uFineNodes;       // STAGE 3: the finer level's nodes
 uniform sampler3D uCoarseField; // STAGE 4: the coarser level's φ, D (texel = node)
 uniform ivec3 uCoarseNodes;     // STAGE 4
 
+// The grid axis of the columns: a column volume's slices are its grid's third axis (SunVolumeGrid).
+const int kVerticalAxis = 2;
+
 bool outside(ivec3 n) { return any(lessThan(n, ivec3(0))) || any(greaterThanEqual(n, uNodes)); }
+
+// The field before the sweeps at node n: φ = 0 and D for the scaled extinction σ* (1/length) with
+// the steepest gradient the grid resolves, |∇φ|/φ = 1/h (h the least spacing, length).
+void startField(ivec3 n, float sigmaStar, float gStar, float hMin) {
+  imageStore(uField, n, vec4(0.0, diffusionCoefficient(sigmaStar * (1.0 - gStar), 1.0 / hMin), 0.0, 0.0));
+}
 
 void main() {
   ivec3 n = ivec3(gl_GlobalInvocationID);
@@ -49,9 +57,9 @@ void main() {
 #if STAGE == 0
   // σ from the vertical volume: τ falls toward +y by σ per unit length (central difference)
   ivec3 up = n, down = n;
-  up[uVerticalAxis] = min(n[uVerticalAxis] + 1, uNodes[uVerticalAxis] - 1);
-  down[uVerticalAxis] = max(n[uVerticalAxis] - 1, 0);
-  float span = float(up[uVerticalAxis] - down[uVerticalAxis]) * uSpacing[uVerticalAxis];
+  up[kVerticalAxis] = min(n[kVerticalAxis] + 1, uNodes[kVerticalAxis] - 1);
+  down[kVerticalAxis] = max(n[kVerticalAxis] - 1, 0);
+  float span = float(up[kVerticalAxis] - down[kVerticalAxis]) * uSpacing[kVerticalAxis];
   float sigma = span > 0.0 ? max(texelFetch(uColumnTau, down, 0).r - texelFetch(uColumnTau, up, 0).r, 0.0) / span : 0.0;
   float sigmaStar = (1.0 - f) * sigma;
   vec3 x = (uNodeToWorld * vec4(vec3(n), 1.0)).xyz;
@@ -59,7 +67,7 @@ void main() {
   float far = (1.0 - f) * sunOpticalDepth(x - 0.5 * hMin * uSunColumns);
   float q = max(exp(-near) - exp(-far), 0.0) / hMin;
   imageStore(uMedium, n, vec4(sigmaStar, q, 0.0, 0.0));
-  imageStore(uField, n, vec4(0.0, diffusionCoefficient(sigmaStar * (1.0 - gStar), 1.0 / hMin), 0.0, 0.0));
+  startField(n, sigmaStar, gStar, hMin);
 #elif STAGE == 3
   vec2 sum = vec2(0.0);
   float weights = 0.0;
@@ -74,7 +82,7 @@ void main() {
       }
   vec2 medium = sum / max(weights, 1e-30);
   imageStore(uMedium, n, vec4(medium, 0.0, 0.0));
-  imageStore(uField, n, vec4(0.0, diffusionCoefficient(medium.x * (1.0 - gStar), 1.0 / hMin), 0.0, 0.0));
+  startField(n, medium.x, gStar, hMin);
 #elif STAGE == 4
   vec3 g = min(vec3(n) * 0.5, vec3(uCoarseNodes) - 1.0);
   imageStore(uField, n, vec4(texture(uCoarseField, (g + 0.5) / vec3(uCoarseNodes)).xy, 0.0, 0.0));
