@@ -11,61 +11,20 @@
 
 #include <glm/geometric.hpp>
 
-#include "bake/OpticalDepthBaker.h"
 #include "core/Defaults.h"
 #include "core/Glsl.h"
-#include "core/Medium.h"
 #include "core/Phase.h"
-#include "render/GlContext.h"
 #include "render/Renderer.h"
 #include "scene/Scene.h"
-#include "support/RenderLuts.h"
-#include "support/TempDir.h"
+#include "support/SunRays.h"
 
 using namespace cloudlut;
 using namespace cloudlut::test;
 
-namespace {
-
-// Optical depth (dimensionless) of the whole line x + t·sun, t ≥ 0, through the particles: the
-// reference particle's density, midpoint rule, 1/128 of the least radius per step.
-double lineDepth(const std::vector<scene::Particle>& particles, const ReferenceParticle& ref, double sigma,
-                 const glm::vec3& x, const glm::vec3& sun) {
-  double tau = 0;
-  for (const scene::Particle& p : particles) {
-    const glm::mat3 inv = p.toParticle();
-    const float reach = std::max({p.radii.x, p.radii.y, p.radii.z});
-    const glm::vec3 oc = x - p.center;
-    const float b = glm::dot(oc, sun), c = glm::dot(oc, oc) - reach * reach;
-    const float disc = b * b - c;
-    if (disc <= 0) continue;
-    const float t0 = std::max(0.0f, -b - std::sqrt(disc)), t1 = -b + std::sqrt(disc);
-    if (t1 <= t0) continue;
-    const float ds = std::min({p.radii.x, p.radii.y, p.radii.z}) / 128.0f;
-    const int n = static_cast<int>(std::ceil((t1 - t0) / ds));
-    const double step = static_cast<double>(t1 - t0) / n, unitStep = glm::length(inv * sun) * step;
-    double sum = 0;
-    for (int i = 0; i < n; ++i) sum += ref.density(inv * (x + sun * static_cast<float>(t0 + (i + 0.5) * step) - p.center));
-    tau += p.density * sigma * sum * unitStep;
-  }
-  return tau;
-}
-
-}  // namespace
-
 TEST_CASE("diffusion volume: the flux leaving the grid equals what the scaled sun beam loses in the cloud",
           "[render][lighting]") {
-  TempDir tmp;
-  const Medium medium;
-  const ReferenceParticle ref{medium.model, medium.seed};
-  bake::OpticalDepthSettings ods;
-  ods.dims = {64, 32, 64, 32};
-  const Table4D od = bake::bakeOpticalDepth(ref, ods);
-  const Table4D l1 = syntheticSingle(), lm = syntheticMultiple();
-  writeLutSet(tmp / "luts", {&od, &l1, &lm});
-  const io::LutSet luts = io::readLutSet(tmp / "luts");
-  const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
-  render::Renderer renderer(*context, luts);
+  SunVolumeRig rig;
+  render::Renderer& renderer = *rig.renderer;
 
   // A heap of seven overlapping particles, one a rotated ellipsoid, under a slanted sun.
   const float centres[7][3] = {{0.0f, 0.0f, 0.0f},   {1.1f, 0.2f, 0.1f},  {-1.0f, 0.1f, 0.3f}, {0.2f, 0.9f, -0.2f},
@@ -98,7 +57,7 @@ TEST_CASE("diffusion volume: the flux leaving the grid equals what the scaled su
   for (int j = 0; j < rays; ++j)
     for (int i = 0; i < rays; ++i) {
       const float a = -extent + (static_cast<float>(i) + 0.5f) * delta, b = -extent + (static_cast<float>(j) + 0.5f) * delta;
-      const double tau = lineDepth(particles, ref, medium.unitOpticalRadius(), a * u + b * w - 10.0f * sun, sun);
+      const double tau = integratedSunDepth(particles, rig.ref, rig.medium.unitOpticalRadius(), a * u + b * w - 10.0f * sun, sun, 128);
       in += (1.0 - std::exp(-(1.0 - f) * tau)) * delta * delta;
     }
   // the rays' square holds every particle's shadow
@@ -170,4 +129,72 @@ TEST_CASE("diffusion volume: the flux leaving the grid equals what the scaled su
   // J: node-centred differences and the flux limiter in clear air (|J| → φ) read the outflow
   // high; measured +8%.
   CHECK(carried == Approx(in).epsilon(0.15));
+}
+
+TEST_CASE("diffusion volume: a scene wider than the grid gets a box around the view, faded out at its sides",
+          "[render][lighting]") {
+  SunVolumeRig rig;
+  render::Renderer& renderer = *rig.renderer;
+
+  // A row of 151 overlapping particles of radius 3 along x ∈ [−300, 300], seen from straight
+  // above: 600 wide, it needs 5 between nodes, more than twice the wanted 1.5 (half the radius),
+  // so the grid is a box 119 × 3 wide centred on the eye (the view has no horizontal direction).
+  std::vector<scene::Particle> particles;
+  for (int i = -75; i <= 75; ++i) {
+    scene::Particle p;
+    p.center = {4.0f * static_cast<float>(i), 0.3f * static_cast<float>(i % 3), 0.0f};
+    p.radii = glm::vec3(3.0f);
+    p.density = 1.0f;
+    particles.push_back(p);
+  }
+  render::RenderSettings rs;
+  rs.view.camera.eye = {0.0f, 150.0f, 0.0f};
+  rs.view.camera.target = {0.0f, 0.0f, 0.0f};
+  rs.view.camera.up = {0.0f, 0.0f, -1.0f};
+  rs.view.camera.fovDeg = 60.0f;
+  rs.view.lighting.sunDirection = glm::normalize(glm::vec3(0.3f, 0.8f, 0.5f));
+  rs.width = 400;
+  rs.height = 40;
+  rs.blend = render::BlendMode::Volume;
+
+  const render::Renderer::DiffusionSnapshot v = renderer.diffusionVolume(particles, rs);
+  REQUIRE(v.grid.cascades == 1);
+  REQUIRE_FALSE(v.field.empty());
+  const glm::vec3 lo(v.grid.toWorld[0] * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  const glm::vec3 hi(v.grid.toWorld[0] * glm::vec4(glm::vec3(v.grid.dims - 1), 1.0f));
+  INFO("box x " << std::min(lo.x, hi.x) << " .. " << std::max(lo.x, hi.x) << ", z " << std::min(lo.z, hi.z) << " .. "
+                << std::max(lo.z, hi.z));
+  // 119 spacings of 3 and three more each side, centred on the eye
+  CHECK(std::abs(hi.x - lo.x) == Approx(125.0 * 3.0).epsilon(0.02));
+  CHECK(std::abs(0.5f * (hi.x + lo.x)) < 3.0f);
+  CHECK(std::abs(0.5f * (hi.z + lo.z)) < 3.0f);
+
+  const render::Image with = renderer.render(particles, rs);
+  render::RenderSettings tables = rs;
+  tables.diffusionShare = 0.0f;
+  const render::Image without = renderer.render(particles, tables);
+  // world x of pixel column px on the row (the image's x is the world's x, the view straight down)
+  const double halfWidth = 150.0 * std::tan(30.0 * kPi / 180.0) * 400.0 / 40.0;
+  const double half = 0.5 * std::abs(hi.x - lo.x);
+  int beyond = 0, inside = 0, differing = 0;
+  double worstBeyond = 0;
+  for (int y = 0; y < rs.height; ++y)
+    for (int x = 0; x < rs.width; ++x) {
+      if (with.pixel(x, y)[3] < 0.05f) continue;
+      const double worldX = ((x + 0.5) / rs.width * 2.0 - 1.0) * halfWidth;
+      const double difference = std::abs(with.pixel(x, y)[0] - without.pixel(x, y)[0]);
+      if (std::abs(worldX) > half + 8.0) {  // beyond the box (and a particle's reach)
+        ++beyond;
+        worstBeyond = std::max(worstBeyond, difference);
+      } else if (std::abs(worldX) < half - 3.0 * (3.0 + 12.0 + 3.0)) {  // inside the fade, by a radius
+        ++inside;
+        if (difference > 1e-3 * std::max(without.pixel(x, y)[0], 1e-3f)) ++differing;
+      }
+    }
+  INFO("cloud pixels beyond the box " << beyond << " (largest difference " << worstBeyond << "), well inside "
+                                      << inside << " (" << differing << " differ)");
+  REQUIRE(beyond > 50);
+  REQUIRE(inside > 50);
+  CHECK(worstBeyond == 0.0);
+  CHECK(differing > inside / 2);
 }

@@ -12,69 +12,12 @@
 
 #include <glm/geometric.hpp>
 
-#include "bake/OpticalDepthBaker.h"
-#include "core/Medium.h"
-#include "render/GlContext.h"
 #include "render/Renderer.h"
 #include "scene/Scene.h"
-#include "support/RenderLuts.h"
-#include "support/TempDir.h"
+#include "support/SunRays.h"
 
 using namespace cloudlut;
 using namespace cloudlut::test;
-
-namespace {
-
-// Optical depth toward the sun from x (dimensionless), midpoint rule in world units.
-double integratedSunDepth(const std::vector<scene::Particle>& particles, const ReferenceParticle& ref, double sigma,
-                          const glm::vec3& x, const glm::vec3& sun) {
-  double tau = 0;
-  for (const scene::Particle& p : particles) {
-    const glm::mat3 inv = p.toParticle();
-    const float reach = std::max({p.radii.x, p.radii.y, p.radii.z});
-    // the part of the ray within reach of the centre
-    const glm::vec3 oc = x - p.center;
-    const float b = glm::dot(oc, sun), c = glm::dot(oc, oc) - reach * reach;
-    const float disc = b * b - c;
-    if (disc <= 0) continue;
-    const float t0 = std::max(0.0f, -b - std::sqrt(disc)), t1 = -b + std::sqrt(disc);
-    if (t1 <= t0) continue;
-    const float ds = std::min(p.radii.x, std::min(p.radii.y, p.radii.z)) / 256.0f;
-    const int n = static_cast<int>(std::ceil((t1 - t0) / ds));
-    const double step = static_cast<double>(t1 - t0) / n, unitStep = glm::length(inv * sun) * step;
-    double sum = 0;
-    for (int i = 0; i < n; ++i) {
-      const glm::vec3 y = inv * (x + sun * static_cast<float>(t0 + (i + 0.5) * step) - p.center);
-      sum += ref.density(y);
-    }
-    tau += p.density * sigma * sum * unitStep;
-  }
-  return tau;
-}
-
-// The renderer both tests build volumes with: the reference particle's optical-depth table
-// (64×32×64×32) and synthetic scattering tables, which the sun volume does not read.
-struct SunVolumeRig {
-  TempDir tmp;
-  const Medium medium;
-  const ReferenceParticle ref{medium.model, medium.seed};
-  io::LutSet luts;
-  std::unique_ptr<render::GlContext> context;
-  std::unique_ptr<render::Renderer> renderer;
-
-  SunVolumeRig() {
-    bake::OpticalDepthSettings ods;
-    ods.dims = {64, 32, 64, 32};
-    const Table4D od = bake::bakeOpticalDepth(ref, ods);
-    const Table4D l1 = syntheticSingle(), lm = syntheticMultiple();
-    writeLutSet(tmp / "luts", {&od, &l1, &lm});
-    luts = io::readLutSet(tmp / "luts");
-    context = render::createHeadlessContext();
-    renderer = std::make_unique<render::Renderer>(*context, luts);
-  }
-};
-
-}  // namespace
 
 TEST_CASE("sun volume: optical depth toward the sun matches the density integrated along the sun rays",
           "[render][lighting]") {

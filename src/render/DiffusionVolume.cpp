@@ -39,7 +39,8 @@ void DiffusionVolume::release() {
 }
 
 void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry,
-                            int sweeps) {
+                            int sweeps, float fadeNodes) {
+  fadeNodes_ = fadeNodes;
   const SunVolumeGrid& grid = columns.grid();
   const glm::ivec3 n = grid.dims;
   if (n != nodes_) {
@@ -123,6 +124,7 @@ void DiffusionVolume::bind(const ProgramUniforms& uniforms, int unit) const {
   uniforms.set("uDiffusionBuilt", built_ && flux_ ? 1 : 0);
   gl_.Uniform3i(uniforms.location("uDiffusionNodes"), nodes_.x, nodes_.y, nodes_.z);
   gl_.UniformMatrix4fv(uniforms.location("uDiffusionToNode"), 1, GL_FALSE, glm::value_ptr(worldToNode_));
+  uniforms.set("uDiffusionFade", fadeNodes_);
 }
 
 std::vector<float> DiffusionVolume::readBack() const {

@@ -28,8 +28,11 @@ class DiffusionVolume {
   // Solves over the nodes of `columns` (one cascade, columns toward +y) lit through `sun` (bound
   // to texture unit `sunUnit` for the solve), for a later phase function of mean cosine g: coarse
   // to fine over up to kLevels levels (each halving the nodes per side), `sweeps` red-black
-  // over-relaxed Gauss-Seidel sweeps on the finest and twice as many on each coarser one.
-  void build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry, int sweeps);
+  // over-relaxed Gauss-Seidel sweeps on the finest and twice as many on each coarser one. With
+  // fadeNodes > 0 (a box over part of a wider scene, whose sides cut clouds) the shader fades
+  // the field out toward the grid's horizontal sides over that many nodes (diffusion_sampling.glsl).
+  void build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry, int sweeps,
+             float fadeNodes = 0.0f);
   static constexpr int kLevels = 3;
   // Binds the field to `unit` and sets diffusion_sampling.glsl's uniforms; without a build
   // (or after clear()) the shader reads no field.
@@ -58,6 +61,7 @@ class DiffusionVolume {
   GLuint flux_ = 0;  // φ and J on the finest level (the shader's)
   glm::ivec3 nodes_{0};
   glm::mat4 worldToNode_{1.0f};
+  float fadeNodes_ = 0.0f;
   bool built_ = false;
 };
 

@@ -78,7 +78,7 @@ struct RenderSettings {
   // particle shader reads them to take each particle's own ramp out; false: the shader computes
   // them again (the same image, slower: for timing).
   bool sunChordMap = true;
-  // Cloud lighting of explicit particles: the share of the multiple light taken from the
+  // Cloud lighting: the share of the multiple light taken from the
   // diffusion volume (render/DiffusionVolume.h, docs/LIGHTING.md; 0: the tables' alone, the pass is
   // skipped; diffusionShareOfMultiple), the sweeps of its solve on its finest level
   // (DiffusionVolume::build) and its node spacing in units of the median particle radius. The

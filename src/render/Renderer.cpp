@@ -107,6 +107,12 @@ struct Renderer::Impl {
   }
 
   // Which light-space volumes a frame built (illuminate).
+  // The diffusion volume's grid (one cascade; none: no cascade) and how many nodes inside its
+  // horizontal sides the shader fades its field out (0: none, the grid holds the whole scene).
+  struct DiffusionGrid {
+    SunVolumeGrid grid;
+    float fadeNodes = 0.0f;
+  };
   struct Built {
     bool sun = false, zenith = false;
   };
@@ -116,7 +122,7 @@ struct Renderer::Impl {
   // sunlight needs it; and the zenith volume over `zenithGrid` when the ambient needs it
   // (needsZenithVolume). Returns which volumes were built.
   Built illuminate(std::size_t count, const SunVolumeGrid& grid, const SunVolumeGrid& zenithGrid, const RenderSettings& s,
-                   RenderStats* stats, const SunVolumeGrid& diffusionGrid = noDiffusionGrid()) {
+                   RenderStats* stats, const DiffusionGrid& diffusionGrid = noDiffusionGrid()) {
     const Stopwatch clock;
     std::size_t dropped = 0, skipped = 0;
     if (s.sunlight == SunlightModel::Particle)
@@ -131,10 +137,11 @@ struct Renderer::Impl {
       zenithVolume.build(zenithGrid, count, particles.tables().opticalDepthTexture(),
                          particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), false);
     diffusion.clear();
-    if (sun && diffusionGrid.cascades == 1 && s.diffusionShare > 0.0f && (s.terms & kTermMultiple) != 0) {
-      diffusionColumns.build(diffusionGrid, count, particles.tables().opticalDepthTexture(),
+    if (sun && diffusionGrid.grid.cascades == 1 && s.diffusionShare > 0.0f && (s.terms & kTermMultiple) != 0) {
+      diffusionColumns.build(diffusionGrid.grid, count, particles.tables().opticalDepthTexture(),
                              particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), false);
-      diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionSweeps);
+      diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionSweeps,
+                      diffusionGrid.fadeNodes);
     }
     gl.Finish();
     if (stats) {
@@ -252,7 +259,8 @@ struct Renderer::Impl {
     }
     const RenderSettings lit = litByAtmosphere(s, 0.5f * (cloud.cloudBase + cloud.cloudTop));
     const Built built = illuminate(g.count, needsSunVolume(lit) ? sunGridFor(cloud, q, lit) : SunVolumeGrid{},
-                                   needsZenithVolume(lit) ? zenithGridFor(cloud, q, lit) : SunVolumeGrid{}, lit, stats);
+                                   needsZenithVolume(lit) ? zenithGridFor(cloud, q, lit) : SunVolumeGrid{}, lit, stats,
+                                   diffusionGridFor(cloud, q, lit));
     return draw(g.count, alpha, g.farPlane, lit, built, stats);
   }
 
@@ -322,16 +330,17 @@ struct Renderer::Impl {
     return sunVolumeGridForLayer(s.view.camera.eye, cloud.cloudBase - r.y, cloud.cloudTop + r.y, kZenith,
                                  kZenithColumnsPerRadius * cloud.cellSize, kSunCascadesMax, kZenithColumns);
   }
-  static SunVolumeGrid noDiffusionGrid() {
-    SunVolumeGrid none;
-    none.cascades = 0;
+  static DiffusionGrid noDiffusionGrid() {
+    DiffusionGrid none;
+    none.grid.cascades = 0;
     return none;
   }
   // The diffusion volume's nodes: vertical columns over the particles' bounds and three spacings
   // beyond (clear air, where the light leaves), the spacing s.diffusionSpacing times the median
   // particle radius (its least semi-axis) or what kDiffusionNodes per side need, up to twice that;
-  // none (no diffusion) for a scene wider than that.
-  static SunVolumeGrid diffusionGridFor(const std::vector<scene::Particle>& list, const RenderSettings& s) {
+  // for a scene wider than that (a dumped cloudscape), a box ahead of the camera over the
+  // particles' heights at the wanted spacing (diffusionGridAhead).
+  static DiffusionGrid diffusionGridFor(const std::vector<scene::Particle>& list, const RenderSettings& s) {
     if (list.empty() || s.diffusionShare <= 0.0f) return noDiffusionGrid();
     glm::vec3 lo = list[0].center, hi = list[0].center;
     std::vector<float> radii;
@@ -345,10 +354,44 @@ struct Renderer::Impl {
     const float wanted = s.diffusionSpacing * radii[radii.size() / 2];
     const float spacing =
         std::max(wanted, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / static_cast<float>(kDiffusionNodes - 9));
-    if (spacing > 2.0f * wanted) return noDiffusionGrid();  // too wide a scene (a dumped cloudscape): the tables
-    return sunVolumeGridForBounds(lo - 3.0f * spacing, hi + 3.0f * spacing, kZenith, spacing, kDiffusionNodes,
-                                  kDiffusionNodes);
+    if (spacing > 2.0f * wanted) return diffusionGridAhead(s, lo.y, hi.y, 2.0f * wanted);
+    return {sunVolumeGridForBounds(lo - 3.0f * spacing, hi + 3.0f * spacing, kZenith, spacing, kDiffusionNodes,
+                                   kDiffusionNodes),
+            0.0f};
   }
+  // A cloudscape's: the box ahead of the camera over the layer widened by the largest vertical
+  // radius, the spacing s.diffusionSpacing times a ring-0 particle's middle radius (its least
+  // semi-axis: the middle of the cloud type's relative sizes times the cell, times the vertical
+  // aspect when that is below 1).
+  static DiffusionGrid diffusionGridFor(const scene::CloudType& cloud, const scene::QualityPreset& q,
+                                        const RenderSettings& s) {
+    if (s.diffusionShare <= 0.0f) return noDiffusionGrid();
+    const scene::GridParameters g = scene::gridParameters(cloud, q);
+    const glm::vec2 r = scene::grid::cgMaxRadii(q.rings - 1, g.g0, g.g1, g.g2);
+    const float radius = cloud.cellSize * 0.5f * (cloud.particleSize.x + cloud.particleSize.y) *
+                         std::min(cloud.verticalAspect, 1.0f);
+    return diffusionGridAhead(s, cloud.cloudBase - r.y, cloud.cloudTop + r.y, 2.0f * s.diffusionSpacing * radius);
+  }
+  // A box of kDiffusionNodes − 9 spacings a side over heights [yLo, yHi] and three spacings
+  // beyond, its back face kDiffusionBehind of its side behind the eye along the view's
+  // horizontal direction (centred on the eye when the view is vertical). The shader fades the
+  // field out over kDiffusionFadeNodes inside its sides, where it cuts clouds.
+  static DiffusionGrid diffusionGridAhead(const RenderSettings& s, float yLo, float yHi, float spacing) {
+    const float side = static_cast<float>(kDiffusionNodes - 9) * spacing;
+    glm::vec3 ahead = s.view.camera.target - s.view.camera.eye;
+    ahead.y = 0.0f;
+    const float length = glm::length(ahead);
+    glm::vec3 centre = s.view.camera.eye;
+    if (length > 1e-6f * glm::length(s.view.camera.target - s.view.camera.eye))
+      centre += ahead / length * ((0.5f - kDiffusionBehind) * side);
+    const glm::vec3 lo(centre.x - 0.5f * side, yLo, centre.z - 0.5f * side);
+    const glm::vec3 hi(centre.x + 0.5f * side, yHi, centre.z + 0.5f * side);
+    return {sunVolumeGridForBounds(lo - 3.0f * spacing, hi + 3.0f * spacing, kZenith, spacing, kDiffusionNodes,
+                                   kDiffusionNodes),
+            kDiffusionFadeNodes};
+  }
+  static constexpr float kDiffusionBehind = 0.2f;
+  static constexpr float kDiffusionFadeNodes = 12.0f;
   static constexpr int kDiffusionNodes = 128;
   static constexpr glm::vec3 kZenith{0.0f, 1.0f, 0.0f};
   static constexpr float kZenithColumnsPerRadius = 0.5f;
@@ -379,11 +422,11 @@ struct Renderer::Impl {
     std::vector<std::size_t> order(list.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     upload.upload(list, order, s.view.camera.eye, glm::normalize(s.view.lighting.sunDirection));
-    const SunVolumeGrid grid = diffusionGridFor(list, s);
+    const DiffusionGrid grid = diffusionGridFor(list, s);
     illuminate(list.size(), needsSunVolume(s) ? sunGridFor(list, s) : SunVolumeGrid{}, SunVolumeGrid{}, s, nullptr,
                grid);
-    if (!diffusion.built()) return {grid, {}, {}};
-    return {grid, diffusion.readBack(), diffusion.readSolve()};
+    if (!diffusion.built()) return {grid.grid, {}, {}};
+    return {grid.grid, diffusion.readBack(), diffusion.readSolve()};
   }
 
   std::vector<float> sunlight(const std::vector<scene::Particle>& list, const RenderSettings& s) {

@@ -5,13 +5,23 @@ uniform sampler3D uDiffusionField;  // RGBA32F per node: φ (fluence per unit su
 uniform int uDiffusionBuilt;        // 0: no field this frame
 uniform ivec3 uDiffusionNodes;
 uniform mat4 uDiffusionToNode;      // world point → node coordinates (node (i, j, k) at integers)
+uniform float uDiffusionFade;       // nodes over which the field fades out inside the horizontal sides (0: none)
 
 // φ and J (per unit sun irradiance; J in world axes, per unit area) at world point x, trilinear
-// between the nodes; w < 0 (no field) outside the grid or without one.
-vec4 diffusionFieldAt(vec3 x, out bool inside) {
+// between the nodes, and how far the field holds there (`presence`): 0 outside the grid or
+// without one, else 1, except in a box over part of a wider scene (uDiffusionFade > 0), where
+// it rises from 0 three nodes inside a horizontal side (grid axes 0 and 1; the clear air the grid
+// keeps beyond a cloud) to 1 uDiffusionFade nodes further in: there the box cuts clouds, and
+// their light leaks out of the cut.
+vec4 diffusionFieldAt(vec3 x, out float presence) {
   vec3 g = (uDiffusionToNode * vec4(x, 1.0)).xyz;
   vec3 last = vec3(uDiffusionNodes) - 1.0;
-  inside = uDiffusionBuilt != 0 && all(greaterThanEqual(g, vec3(0.0))) && all(lessThanEqual(g, last));
-  if (!inside) return vec4(0.0);
+  presence = 0.0;
+  if (uDiffusionBuilt == 0 || any(lessThan(g, vec3(0.0))) || any(greaterThan(g, last))) return vec4(0.0);
+  presence = 1.0;
+  if (uDiffusionFade > 0.0) {
+    vec2 side = min(g.xy, last.xy - g.xy);
+    presence = clamp((min(side.x, side.y) - 3.0) / uDiffusionFade, 0.0, 1.0);
+  }
   return texture(uDiffusionField, (g + 0.5) / vec3(uDiffusionNodes));
 }

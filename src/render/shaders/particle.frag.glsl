@@ -196,11 +196,12 @@ void main() {
       // the diffusion volume's share of the multiple light, where it has a field
       // (diffusionShareOfMultiple): the diffuse field at x̄ scattered toward the camera
       // (diffusedRadiance) times the chord's opacity, times the diffusion's gain
-      bool inGrid;
-      vec4 field = diffusionFieldAt(xMean, inGrid);
-      if (inGrid) {
+      float presence;
+      vec4 field = diffusionFieldAt(xMean, presence);
+      if (presence > 0.0) {
         float diffused = uDiffusionGain * chordOpacity(tau) * diffusedRadiance(field.x, field.yzw, -dir, uLaterAsymmetry);
-        multiple = mix(multiple, diffused, diffusionShareOfMultiple(uDiffusionShare, weight, dot(dir, uSunDirection)));
+        multiple = mix(multiple, diffused,
+                       presence * diffusionShareOfMultiple(uDiffusionShare, weight, dot(dir, uSunDirection)));
       }
     }
   }
