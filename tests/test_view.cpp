@@ -108,6 +108,8 @@ TEST_CASE("view: controls change the state the loop renders", "[view]") {
   view::onKey(s, GLFW_KEY_M, GLFW_PRESS, 0);
   CHECK(s.lighting == render::LightingModel::Cloud);
   CHECK(s.sunlight == render::SunlightModel::Volume);
+  view::onKey(s, GLFW_KEY_F, GLFW_PRESS, 0);
+  CHECK_FALSE(s.diffusion);
   view::onKey(s, GLFW_KEY_F12, GLFW_PRESS, 0);
   CHECK(s.screenshots == 1);
   CHECK_FALSE(s.quit);

@@ -85,7 +85,8 @@ std::vector<std::string> overlayLines(const ViewerState& s, const render::Render
           format("quality %s, %s blending, 1/%d resolution", scene::qualityPresetNames()[s.quality].c_str(),
                  render::toString(s.blend), s.downscale),
           format("lighting %s, sunlight %s", render::toString(s.lighting), render::toString(s.sunlight)),
-          format("detail noise %s", on(s.detail && o.settings.detail.enabled())),
+          format("detail noise %s, diffusion %s", on(s.detail && o.settings.detail.enabled()),
+                 on(s.diffusion && o.settings.diffusionShare > 0.0f)),
           format("occlusion %s; single %s, multiple %s, ambient %s", on(s.occlusion), on(s.terms & render::kTermSingle),
                  on(s.terms & render::kTermMultiple), on(s.terms & render::kTermAmbient)),
           format("camera (%.0f, %.0f, %.0f), yaw %.1f, pitch %.1f", e.x, e.y, e.z, s.camera.yawDeg, s.camera.pitchDeg),
@@ -179,6 +180,7 @@ int runViewer(const ViewerOptions& o) {
     settings.sunlight = state.sunlight;
     settings.downscale = state.downscale;
     settings.detail = state.detail ? o.settings.detail : DetailNoise{};
+    settings.diffusionShare = state.diffusion ? o.settings.diffusionShare : 0.0f;
     render::RenderStats stats;
     const render::Image image =
         o.particles ? renderer->render(o.scene.particles, settings, &stats)

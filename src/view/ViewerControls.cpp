@@ -51,6 +51,7 @@ void onKey(ViewerState& s, int key, int action, int mods) {
     case GLFW_KEY_N: s.lutSet = (s.lutSet + 1) % std::max<std::size_t>(s.lutSetCount, 1); break;
     case GLFW_KEY_H: s.overlay = !s.overlay; break;
     case GLFW_KEY_V: s.detail = !s.detail; break;
+    case GLFW_KEY_F: s.diffusion = !s.diffusion; break;
     default: break;
   }
   (void)mods;
@@ -127,6 +128,7 @@ std::vector<std::string> controlsHelp() {
           "G                        render at 1, 1/2, 1/4 resolution",
           "N                        next LUT set (e.g. 18 orders / converged)",
           "V                        detail noise on or off",
+          "F                        diffusion volume on or off (cloud lighting)",
           "H                        overlay on or off",
           "F12                      screenshot cloudlut_NNNN.png",
           "Esc, closing the window  quit"};

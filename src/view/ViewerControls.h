@@ -32,6 +32,7 @@ struct ViewerState {
   render::SunlightModel sunlight = render::SunlightModel::Volume;  // P switches
   int downscale = 1;
   bool detail = true;  // V: the scene's detail noise on or off (when it has one)
+  bool diffusion = true;  // F: the diffusion volume's share of the multiple light on or off
   std::size_t lutSet = 0, lutSetCount = 1;  // which of the LUT sets found (N cycles)
   bool overlay = true;
   // Requests the loop acts on.
