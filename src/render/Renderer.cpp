@@ -106,13 +106,13 @@ struct Renderer::Impl {
                        " pixels per side");
   }
 
-  // Which light-space volumes a frame built (illuminate).
   // The diffusion volume's grid (one cascade; none: no cascade) and how many nodes inside its
   // horizontal sides the shader fades its field out (0: none, the grid holds the whole scene).
   struct DiffusionGrid {
     SunVolumeGrid grid;
     float fadeNodes = 0.0f;
   };
+  // Which light-space volumes a frame built (illuminate).
   struct Built {
     bool sun = false, zenith = false;
   };
@@ -339,7 +339,7 @@ struct Renderer::Impl {
   // beyond (clear air, where the light leaves), the spacing s.diffusionSpacing times the median
   // particle radius (its least semi-axis) or what kDiffusionNodes per side need, up to twice that;
   // for a scene wider than that (a dumped cloudscape), a box ahead of the camera over the
-  // particles' heights at the wanted spacing (diffusionGridAhead).
+  // particles' heights (diffusionGridAhead).
   static DiffusionGrid diffusionGridFor(const std::vector<scene::Particle>& list, const RenderSettings& s) {
     if (list.empty() || s.diffusionShare <= 0.0f) return noDiffusionGrid();
     glm::vec3 lo = list[0].center, hi = list[0].center;
@@ -354,15 +354,15 @@ struct Renderer::Impl {
     const float wanted = s.diffusionSpacing * radii[radii.size() / 2];
     const float spacing =
         std::max(wanted, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / static_cast<float>(kDiffusionNodes - 9));
-    if (spacing > 2.0f * wanted) return diffusionGridAhead(s, lo.y, hi.y, 2.0f * wanted);
+    if (spacing > 2.0f * wanted) return diffusionGridAhead(s, lo.y, hi.y, wanted);
     return {sunVolumeGridForBounds(lo - 3.0f * spacing, hi + 3.0f * spacing, kZenith, spacing, kDiffusionNodes,
                                    kDiffusionNodes),
             0.0f};
   }
   // A cloudscape's: the box ahead of the camera over the layer widened by the largest vertical
-  // radius, the spacing s.diffusionSpacing times a ring-0 particle's middle radius (its least
-  // semi-axis: the middle of the cloud type's relative sizes times the cell, times the vertical
-  // aspect when that is below 1).
+  // radius, for a wanted spacing of s.diffusionSpacing times a ring-0 particle's middle radius
+  // (its least semi-axis: the middle of the cloud type's relative sizes times the cell, times the
+  // vertical aspect when that is below 1).
   static DiffusionGrid diffusionGridFor(const scene::CloudType& cloud, const scene::QualityPreset& q,
                                         const RenderSettings& s) {
     if (s.diffusionShare <= 0.0f) return noDiffusionGrid();
@@ -370,13 +370,15 @@ struct Renderer::Impl {
     const glm::vec2 r = scene::grid::cgMaxRadii(q.rings - 1, g.g0, g.g1, g.g2);
     const float radius = cloud.cellSize * 0.5f * (cloud.particleSize.x + cloud.particleSize.y) *
                          std::min(cloud.verticalAspect, 1.0f);
-    return diffusionGridAhead(s, cloud.cloudBase - r.y, cloud.cloudTop + r.y, 2.0f * s.diffusionSpacing * radius);
+    return diffusionGridAhead(s, cloud.cloudBase - r.y, cloud.cloudTop + r.y, s.diffusionSpacing * radius);
   }
   // A box of kDiffusionNodes − 9 spacings a side over heights [yLo, yHi] and three spacings
-  // beyond, its back face kDiffusionBehind of its side behind the eye along the view's
-  // horizontal direction (centred on the eye when the view is vertical). The shader fades the
-  // field out over kDiffusionFadeNodes inside its sides, where it cuts clouds.
-  static DiffusionGrid diffusionGridAhead(const RenderSettings& s, float yLo, float yHi, float spacing) {
+  // beyond, the spacing kDiffusionAheadSpacing times the wanted one, its back face
+  // kDiffusionBehind of its side behind the eye along the view's horizontal direction (centred on
+  // the eye when the view is vertical). The shader fades the field out over kDiffusionFadeNodes
+  // inside its sides, where it cuts clouds.
+  static DiffusionGrid diffusionGridAhead(const RenderSettings& s, float yLo, float yHi, float wanted) {
+    const float spacing = kDiffusionAheadSpacing * wanted;
     const float side = static_cast<float>(kDiffusionNodes - 9) * spacing;
     glm::vec3 ahead = s.view.camera.target - s.view.camera.eye;
     ahead.y = 0.0f;
@@ -390,6 +392,9 @@ struct Renderer::Impl {
                                    kDiffusionNodes),
             kDiffusionFadeNodes};
   }
+  // Twice the wanted spacing: one particle radius at the default, a box 16.7 km a side for
+  // fair_weather_cumulus (docs/LIGHTING.md, "The diffusion box ahead of the camera").
+  static constexpr float kDiffusionAheadSpacing = 2.0f;
   static constexpr float kDiffusionBehind = 0.2f;
   static constexpr float kDiffusionFadeNodes = 12.0f;
   static constexpr int kDiffusionNodes = 128;
@@ -403,12 +408,17 @@ struct Renderer::Impl {
     return generation.readBack(generation.run(cloud, q, s, false, particles.tables().referenceRadius()), cloud, q, s);
   }
 
-  Renderer::SunVolumeSnapshot sunVolumeOf(const std::vector<scene::Particle>& list, const RenderSettings& s,
-                                          const SunVolumeGrid* given) {
-    validate(s);
+  // Uploads `list` in its own order, for the light-space passes alone (no draw follows).
+  void uploadAsGiven(const std::vector<scene::Particle>& list, const RenderSettings& s) {
     std::vector<std::size_t> order(list.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     upload.upload(list, order, s.view.camera.eye, glm::normalize(s.view.lighting.sunDirection));
+  }
+
+  Renderer::SunVolumeSnapshot sunVolumeOf(const std::vector<scene::Particle>& list, const RenderSettings& s,
+                                          const SunVolumeGrid* given) {
+    validate(s);
+    uploadAsGiven(list, s);
     const SunVolumeGrid grid = given ? *given : sunGridFor(list, s);
     if (list.empty()) return {grid, {}, 0};
     const std::size_t skipped =
@@ -419,9 +429,7 @@ struct Renderer::Impl {
 
   Renderer::DiffusionSnapshot diffusionOf(const std::vector<scene::Particle>& list, const RenderSettings& s) {
     validate(s);
-    std::vector<std::size_t> order(list.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    upload.upload(list, order, s.view.camera.eye, glm::normalize(s.view.lighting.sunDirection));
+    uploadAsGiven(list, s);
     const DiffusionGrid grid = diffusionGridFor(list, s);
     illuminate(list.size(), needsSunVolume(s) ? sunGridFor(list, s) : SunVolumeGrid{}, SunVolumeGrid{}, s, nullptr,
                grid);
@@ -431,9 +439,7 @@ struct Renderer::Impl {
 
   std::vector<float> sunlight(const std::vector<scene::Particle>& list, const RenderSettings& s) {
     validate(s);
-    std::vector<std::size_t> order(list.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    upload.upload(list, order, s.view.camera.eye, glm::normalize(s.view.lighting.sunDirection));
+    uploadAsGiven(list, s);
     occlusion.run(list.size(), s, particles.tables().unitOpticalRadius(), false);
     std::vector<float> out;
     for (const GpuParticleRecord& r : buffers.readRecords(list.size())) out.push_back(r.toParticle[2][3]);

@@ -88,8 +88,8 @@ class Renderer {
   // The diffusion volume (render/DiffusionVolume.h) the cloud lighting solves for `particles`
   // under `settings`: its grid (one cascade; its node n at toWorld[0]·n), per node φ and J
   // (`field`, DiffusionVolume::readBack) and σ*, q, φ and D (`solve`, readSolve); both empty when
-  // the frame would get no field (a scene too wide for the grid, --diffusion 0, or no multiple
-  // term). For tests and tools.
+  // the frame would get no field (--diffusion 0, no multiple term, no particles). For tests and
+  // tools.
   struct DiffusionSnapshot {
     SunVolumeGrid grid;
     std::vector<float> field, solve;
