@@ -82,3 +82,18 @@ TEST_CASE("diffusion: its share of the multiple light", "[diffusion]") {
       CHECK(s <= 1.0f);
     }
 }
+
+TEST_CASE("diffusion: the weight of the cloud beside a point", "[diffusion]") {
+  using glm::vec4;
+  CHECK(glsl::cloudBesideWeight(vec4(0.0f), 8.0f) == 0.0f);                         // clear air around
+  CHECK(glsl::cloudBesideWeight(vec4(8.0f, 9.0f, 20.0f, 8.0f), 8.0f) == Approx(1.0));  // inside a cloud
+  // a particle at the side of a heap: the heap's columns on one side, clear air on the other
+  CHECK(glsl::cloudBesideWeight(vec4(12.0f, 0.0f, 6.0f, 0.0f), 8.0f) == Approx((1.0 + 0.75) / 4.0));
+  // a particle alone: the volume's rounding beside it (~10⁻³) against its own column weighs nothing
+  CHECK(glsl::cloudBesideWeight(vec4(1e-3f), 5.0f) < 1e-3f);
+  CHECK(glsl::cloudBesideWeight(vec4(0.005f), 0.0f) == Approx(0.5));  // the point's column floored at 0.01
+  // each column counts once, whatever its order
+  const vec4 c(3.0f, 0.5f, 7.0f, 1.5f);
+  CHECK(glsl::cloudBesideWeight(c, 4.0f) == Approx(glsl::cloudBesideWeight(vec4(c.w, c.z, c.y, c.x), 4.0f)));
+  CHECK(glsl::cloudBesideWeight(c, 4.0f) == Approx((0.75 + 0.125 + 1.0 + 0.375) / 4.0));
+}

@@ -315,10 +315,23 @@ CLOUDLUT_FN float diffusedRadiance(float phi, vec3 flux, vec3 omega, float g) {
   return max(phi + 3.0f * g * dot(flux, omega), 0.0f) * 0.0795774715459477f;
 }
 
+// Weight of the cloud beside a point (dimensionless, [0, 1]), from the local cloud columns
+// (localCloudColumn's y, dimensionless optical depths) through four points around it across the
+// sun (besideColumns) and through the point itself (column): the mean of each beside column
+// against the point's own (floored at 0.01), each at most 1. 0 with clear air all around the
+// point, → 1 inside a cloud. cloudScaleWeight reads the column through the point only, so a
+// particle at the side of a heap counts there as alone though the heap beside it diffuses light
+// into it.
+CLOUDLUT_FN float cloudBesideWeight(vec4 besideColumns, float column) {
+  vec4 r = clamp(besideColumns / max(column, 0.01f), 0.0f, 1.0f);
+  return 0.25f * (r.x + r.y + r.z + r.w);
+}
+
 // Share of a fragment's multiple light taken from the diffusion field rather than the tables
 // (dimensionless): `share` (the renderer's setting) where the particle lies deep in a cloud
-// (cloudWeight → 1, cloudScaleWeight), half of it where it stands alone (cloudWeight = 0: the
-// tables hold an isolated particle, a dense one better than the grid does), and fading as
+// (cloudWeight → 1: the larger of cloudScaleWeight and cloudBesideWeight), half of it where it
+// stands alone (cloudWeight = 0: the tables hold an isolated particle, a dense one better than
+// the grid does), and fading as
 // (1 − μ)² with μ = max(v·l, 0) toward the sun: diffusion's P1 field has no forward peak, which
 // makes the light seen toward the sun (the backlit rim). Measured against the path tracer,
 // docs/LIGHTING.md ("Diffusion of the multiply scattered light").

@@ -1,5 +1,7 @@
 #include "render/DiffusionVolume.h"
 
+#include <algorithm>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -22,7 +24,7 @@ constexpr int kCoarseUnit = 2;  // texture unit of the coarser level's field (pr
 }  // namespace
 
 DiffusionVolume::DiffusionVolume(const GlFunctions& gl, const GlContext& context) : gl_(gl), context_(context) {
-  for (int stage = 0; stage < 5; ++stage)
+  for (int stage = 0; stage < 6; ++stage)
     stages_[stage] = linkComputeProgram(gl, kFiles, glslDefine("STAGE", stage) + SunVolume::samplingDefines());
 }
 
@@ -35,11 +37,12 @@ void DiffusionVolume::release() {
     l.nodes = glm::ivec3(0);
   }
   deleteTexture(gl_, flux_);
+  deleteTexture(gl_, beside_);
   levelCount_ = 0;
 }
 
 void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry,
-                            int sweeps, float fadeNodes) {
+                            int sweeps, float besideOffset, float fadeNodes) {
   fadeNodes_ = fadeNodes;
   const SunVolumeGrid& grid = columns.grid();
   const glm::ivec3 n = grid.dims;
@@ -55,6 +58,9 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
       dims = (dims + 1) / 2;
     }
     flux_ = createFloatTexture3D(gl_, context_, "the diffusion volume", n.x, n.y, n.z, 4, nullptr);
+    besideLevel_ = std::min(levelCount_ - 1, 1);
+    const glm::ivec3 b = levels_[besideLevel_].nodes;
+    beside_ = createFloatTexture3D(gl_, context_, "the diffusion volume", b.x, b.y, b.z, 1, nullptr);
     nodes_ = n;
   }
   worldToNode_ = grid.toGrid[0];
@@ -112,7 +118,12 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
   const glm::ivec3 d = use(2, 0);
   gl_.BindImageTexture(3, flux_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
   dispatch(d);
-  for (GLuint unit = 0; unit < 4; ++unit) gl_.BindImageTexture(unit, 0, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
+  const glm::ivec3 b = use(5, besideLevel_);
+  ProgramUniforms(gl_, stages_[5].id()).set("uBesideOffset", besideOffset);
+  ProgramUniforms(gl_, stages_[5].id()).set("uBesideStride", static_cast<float>(1 << besideLevel_));
+  gl_.BindImageTexture(4, beside_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+  dispatch(b);
+  for (GLuint unit = 0; unit < 5; ++unit) gl_.BindImageTexture(unit, 0, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
   checkGlError(gl_, "solving the diffusion volume");
   built_ = true;
 }
@@ -125,6 +136,12 @@ void DiffusionVolume::bind(const ProgramUniforms& uniforms, int unit) const {
   gl_.Uniform3i(uniforms.location("uDiffusionNodes"), nodes_.x, nodes_.y, nodes_.z);
   gl_.UniformMatrix4fv(uniforms.location("uDiffusionToNode"), 1, GL_FALSE, glm::value_ptr(worldToNode_));
   uniforms.set("uDiffusionFade", fadeNodes_);
+  gl_.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit + 1));
+  gl_.BindTexture(GL_TEXTURE_3D, beside_);
+  uniforms.set("uDiffusionBeside", unit + 1);
+  uniforms.set("uDiffusionBesideStride", static_cast<float>(1 << besideLevel_));
+  const glm::ivec3 b = levels_[besideLevel_].nodes;
+  gl_.Uniform3i(uniforms.location("uDiffusionBesideNodes"), b.x, b.y, b.z);
 }
 
 std::vector<float> DiffusionVolume::readBack() const {

@@ -5,7 +5,8 @@
 // (a SunVolume built toward +y over the particles' bounds, whose optical depths give the
 // extinction), lit through the sun volume. The particle shader reads the fluence and flux at
 // each fragment's mean scattering point (shaders/diffusion_sampling.glsl) and takes a share of
-// its multiple scattering from it (diffusionShareOfMultiple, cloudlut_shading.glsl).
+// its multiple scattering from it (diffusionShareOfMultiple, cloudlut_shading.glsl), larger
+// where the pass finds cloud beside the point across the sun (cloudBesideWeight).
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -31,10 +32,14 @@ class DiffusionVolume {
   // over-relaxed Gauss-Seidel sweeps on the finest and twice as many on each coarser one. With
   // fadeNodes > 0 (a box over part of a wider scene, whose sides cut clouds) the shader fades
   // the field out toward the grid's horizontal sides over that many nodes (diffusion_sampling.glsl).
+  // Then, on the next coarser level's nodes (the finest's when it is the only one), the weight
+  // of the cloud beside each across the sun, besideOffset (world units) away (cloudBesideWeight):
+  // it varies over particle radii, and the finest level's nodes would cost 8 times as much.
   void build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry, int sweeps,
-             float fadeNodes = 0.0f);
+             float besideOffset, float fadeNodes = 0.0f);
   static constexpr int kLevels = 3;
-  // Binds the field to `unit` and sets diffusion_sampling.glsl's uniforms; without a build
+  // Binds the field to `unit`, the weights of the cloud beside to `unit` + 1, and sets
+  // diffusion_sampling.glsl's uniforms; without a build
   // (or after clear()) the shader reads no field.
   void bind(const ProgramUniforms& uniforms, int unit) const;
   void clear() { built_ = false; }
@@ -50,7 +55,7 @@ class DiffusionVolume {
  private:
   const GlFunctions& gl_;
   const GlContext& context_;
-  GlProgram stages_[5];  // diffusion_volume.comp.glsl's STAGE 0 … 4
+  GlProgram stages_[6];  // diffusion_volume.comp.glsl's STAGE 0 … 5
   struct Level {
     GLuint medium = 0, field = 0;  // σ* and q; φ and D
     glm::ivec3 nodes{0};
@@ -59,6 +64,8 @@ class DiffusionVolume {
   Level levels_[kLevels];
   int levelCount_ = 0;
   GLuint flux_ = 0;  // φ and J on the finest level (the shader's)
+  GLuint beside_ = 0;  // the weight of the cloud beside each node of level besideLevel_ (the shader's)
+  int besideLevel_ = 0;
   glm::ivec3 nodes_{0};
   glm::mat4 worldToNode_{1.0f};
   float fadeNodes_ = 0.0f;

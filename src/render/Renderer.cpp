@@ -106,11 +106,14 @@ struct Renderer::Impl {
                        " pixels per side");
   }
 
-  // The diffusion volume's grid (one cascade; none: no cascade) and how many nodes inside its
-  // horizontal sides the shader fades its field out (0: none, the grid holds the whole scene).
+  // The diffusion volume's grid (one cascade; none: no cascade), how many nodes inside its
+  // horizontal sides the shader fades its field out (0: none, the grid holds the whole scene),
+  // and how far beside each node the weight of the cloud beside it looks (world units,
+  // kBesideRadii particle radii).
   struct DiffusionGrid {
     SunVolumeGrid grid;
     float fadeNodes = 0.0f;
+    float besideOffset = 0.0f;
   };
   // Which light-space volumes a frame built (illuminate).
   struct Built {
@@ -141,7 +144,7 @@ struct Renderer::Impl {
       diffusionColumns.build(diffusionGrid.grid, count, particles.tables().opticalDepthTexture(),
                              particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), false);
       diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionSweeps,
-                      diffusionGrid.fadeNodes);
+                      diffusionGrid.besideOffset, diffusionGrid.fadeNodes);
     }
     gl.Finish();
     if (stats) {
@@ -351,13 +354,13 @@ struct Renderer::Impl {
       radii.push_back(std::min({p.radii.x, p.radii.y, p.radii.z}));
     }
     std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2), radii.end());
-    const float wanted = s.diffusionSpacing * radii[radii.size() / 2];
+    const float radius = radii[radii.size() / 2], wanted = s.diffusionSpacing * radius;
     const float spacing =
         std::max(wanted, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / static_cast<float>(kDiffusionNodes - 9));
-    if (spacing > 2.0f * wanted) return diffusionGridAhead(s, lo.y, hi.y, wanted);
+    if (spacing > 2.0f * wanted) return diffusionGridAhead(s, lo.y, hi.y, radius);
     return {sunVolumeGridForBounds(lo - 3.0f * spacing, hi + 3.0f * spacing, kZenith, spacing, kDiffusionNodes,
                                    kDiffusionNodes),
-            0.0f};
+            0.0f, kBesideRadii * radius};
   }
   // A cloudscape's: the box ahead of the camera over the layer widened by the largest vertical
   // radius, for a wanted spacing of s.diffusionSpacing times a ring-0 particle's middle radius
@@ -370,15 +373,16 @@ struct Renderer::Impl {
     const glm::vec2 r = scene::grid::cgMaxRadii(q.rings - 1, g.g0, g.g1, g.g2);
     const float radius = cloud.cellSize * 0.5f * (cloud.particleSize.x + cloud.particleSize.y) *
                          std::min(cloud.verticalAspect, 1.0f);
-    return diffusionGridAhead(s, cloud.cloudBase - r.y, cloud.cloudTop + r.y, s.diffusionSpacing * radius);
+    return diffusionGridAhead(s, cloud.cloudBase - r.y, cloud.cloudTop + r.y, radius);
   }
   // A box of kDiffusionNodes − 9 spacings a side over heights [yLo, yHi] and three spacings
-  // beyond, the spacing kDiffusionAheadSpacing times the wanted one, its back face
+  // beyond, the spacing kDiffusionAheadSpacing times the wanted one (s.diffusionSpacing times the
+  // particle radius `radius`), its back face
   // kDiffusionBehind of its side behind the eye along the view's horizontal direction (centred on
   // the eye when the view is vertical). The shader fades the field out over kDiffusionFadeNodes
   // inside its sides, where it cuts clouds.
-  static DiffusionGrid diffusionGridAhead(const RenderSettings& s, float yLo, float yHi, float wanted) {
-    const float spacing = kDiffusionAheadSpacing * wanted;
+  static DiffusionGrid diffusionGridAhead(const RenderSettings& s, float yLo, float yHi, float radius) {
+    const float spacing = kDiffusionAheadSpacing * s.diffusionSpacing * radius;
     const float side = static_cast<float>(kDiffusionNodes - 9) * spacing;
     glm::vec3 ahead = s.view.camera.target - s.view.camera.eye;
     ahead.y = 0.0f;
@@ -390,13 +394,16 @@ struct Renderer::Impl {
     const glm::vec3 hi(centre.x + 0.5f * side, yHi, centre.z + 0.5f * side);
     return {sunVolumeGridForBounds(lo - 3.0f * spacing, hi + 3.0f * spacing, kZenith, spacing, kDiffusionNodes,
                                    kDiffusionNodes),
-            kDiffusionFadeNodes};
+            kDiffusionFadeNodes, kBesideRadii * radius};
   }
   // Twice the wanted spacing: one particle radius at the default, a box 16.7 km a side for
   // fair_weather_cumulus (docs/LIGHTING.md, "The diffusion box ahead of the camera").
   static constexpr float kDiffusionAheadSpacing = 2.0f;
   static constexpr float kDiffusionBehind = 0.2f;
   static constexpr float kDiffusionFadeNodes = 12.0f;
+  // The cloud beside a node is looked for two particle radii away: from a particle's edge, past
+  // its own chords; within its neighbours' (docs/LIGHTING.md, "The cloud beside a particle").
+  static constexpr float kBesideRadii = 2.0f;
   static constexpr int kDiffusionNodes = 128;
   static constexpr glm::vec3 kZenith{0.0f, 1.0f, 0.0f};
   static constexpr float kZenithColumnsPerRadius = 0.5f;

@@ -196,12 +196,14 @@ void main() {
       // the diffusion volume's share of the multiple light, where it has a field
       // (diffusionShareOfMultiple): the diffuse field at x̄ scattered toward the camera
       // (diffusedRadiance) times the chord's opacity, times the diffusion's gain
-      float presence;
-      vec4 field = diffusionFieldAt(xMean, presence);
+      float presence, beside;
+      vec4 field = diffusionFieldAt(xMean, presence, beside);
       if (presence > 0.0) {
         float diffused = uDiffusionGain * chordOpacity(tau) * diffusedRadiance(field.x, field.yzw, -dir, uLaterAsymmetry);
+        // a particle the sun column calls alone may stand beside a cloud (cloudBesideWeight)
+        float inCloud = max(weight, beside);
         multiple = mix(multiple, diffused,
-                       presence * diffusionShareOfMultiple(uDiffusionShare, weight, dot(dir, uSunDirection)));
+                       presence * diffusionShareOfMultiple(uDiffusionShare, inCloud, dot(dir, uSunDirection)));
       }
     }
   }

@@ -84,3 +84,17 @@ vec3 localCloudAlongSun(vec3 x, float tauSun) {
   return localCloudColumn(tauSun, sunOpticalDepth(x + uSunLocalCloud * uSunColumns),
                           sunOpticalDepth(x - uSunLocalCloud * uSunColumns));
 }
+
+// The local cloud columns (localCloudAlongSun(...).y, dimensionless) through four world points
+// beside x across the sun columns: x moved both ways by `offset` (world units) along two
+// directions perpendicular to them. Read by cloudBesideWeight.
+vec4 localColumnsBeside(vec3 x, float offset) {
+  vec3 a = normalize(cross(uSunColumns, abs(uSunColumns.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+  vec3 b = cross(uSunColumns, a);
+  vec4 columns;
+  for (int k = 0; k < 4; ++k) {
+    vec3 y = x + offset * (k < 2 ? a : b) * ((k & 1) == 0 ? 1.0 : -1.0);
+    columns[k] = localCloudAlongSun(y, sunOpticalDepth(y)).y;
+  }
+  return columns;
+}
