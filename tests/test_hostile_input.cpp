@@ -173,6 +173,8 @@ TEST_CASE("faults 8, 9: a table's physics obey the rules, and wrong types name t
                       {"first_phase", {{"kind", 99}, {"param", 0.9}}},          {"first_phase", {{"kind", 2}, {"param", 5}}},
                       {"later_phase", {{"kind", 1}, {"param", -1.0}}},          {"seed", -1},
                       {"seed", 1.5},               {"density_model", 7},
+                      {"chord_outer_third_share", 0.9}, {"chord_outer_third_share", -0.1},
+                      {"chord_outer_third_share", "x"},
                       {"angular_closure", "x"},
                       {"angular_closure", {{"log2_rho_first", 0}, {"log2_rho_step", 1}, {"density_nodes", 1},
                                            {"mu_bins", 2}, {"values", {1.0, 1e30}}}},

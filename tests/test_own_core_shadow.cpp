@@ -10,7 +10,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "bake/ChordMatterProfile.h"
 #include "bake/OpticalDepthBaker.h"
+#include "core/Defaults.h"
 #include "core/Glsl.h"
 #include "core/Medium.h"
 #include "core/OwnSunDepth.h"
@@ -65,10 +67,20 @@ TEST_CASE("own core shadow: the shared functions against their definitions", "[c
     }
   CHECK(glsl::unitSphereExitDistance(glm::vec3(0, 0, 2), glm::vec3(0, 0, 1)) == 0.0f);  // outside, past it
 
-  // the ramp: 0 before the first matter, the whole chord after the last, linear between
-  CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.1f) == 0.0f);
-  CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.5f) == Approx(3.0f));
-  CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.95f) == Approx(6.0f));
+  // the ramp: 0 before the first matter, the whole chord after the last, half at the middle,
+  // the outer third's share a third of the way, linear within each third; even (linear
+  // throughout) for a = 1/3
+  for (const float a : {0.265f, 1.0f / 3.0f, 0.5f}) {
+    INFO("outer third " << a);
+    CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.1f, a) == 0.0f);
+    CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.3f, a) == Approx(6.0f * a * 0.5f));
+    CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.4f, a) == Approx(6.0f * a));
+    CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.5f, a) == Approx(3.0f));
+    CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.7f, a) == Approx(6.0f * (1.0f - a * 0.5f)));
+    CHECK(glsl::ownSunRamp(6.0f, 0.2f, 0.8f, 0.95f, a) == Approx(6.0f));
+  }
+  for (const float s : {0.0f, 0.13f, 0.37f, 0.5f, 0.71f, 1.0f})
+    CHECK(glsl::chordMatterShare(s, 1.0f / 3.0f) == Approx(s).margin(1e-6));
 
   // the mean scattering point: the e^{−τ(t − first)/(last − first)}-weighted mean of t over the
   // matter [first, last] (midpoint rule), for transparent to opaque chords
@@ -109,7 +121,7 @@ TEST_CASE("own core shadow: the own optical depth toward the sun from the table"
     for (const glm::vec3& x : {glm::vec3(0, 0, 0), glm::vec3(0.4f, -0.3f, 0.2f), glm::vec3(-0.5f, -0.5f, 0.5f)}) {
       const double exact = integratedToSun(sphere, sigma, 2.0f, x, l);
       INFO("x " << x.x << " " << x.y << " " << x.z);
-      CHECK(ownSunOpticalDepth(od, x, l, 2.0f) == Approx(exact).epsilon(0.03));
+      CHECK(ownSunOpticalDepth(od, chordOuterThird(od), x, l, 2.0f) == Approx(exact).epsilon(0.03));
     }
   }
   SECTION("the noise particle: behind its last matter the whole chord, before its first none") {
@@ -126,10 +138,51 @@ TEST_CASE("own core shadow: the own optical depth toward the sun from the table"
       const glm::vec3 far = offset - depth * l, near = offset + depth * l;
       const double whole = integratedToSun(particle, sigma, 1.0f, far, l);
       INFO("offset angle " << a);
-      CHECK(ownSunOpticalDepth(od, far, l, 1.0f) == Approx(whole).epsilon(0.05).margin(0.05));
-      CHECK(ownSunOpticalDepth(od, near, l, 1.0f) <= 0.05 * whole + 1e-3);
+      CHECK(ownSunOpticalDepth(od, chordOuterThird(od), far, l, 1.0f) == Approx(whole).epsilon(0.05).margin(0.05));
+      CHECK(ownSunOpticalDepth(od, chordOuterThird(od), near, l, 1.0f) <= 0.05 * whole + 1e-3);
       behind += whole > 1.0;
     }
     CHECK(behind >= 6);  // the chords hold matter: the check above is not of empty rays
   }
+}
+
+TEST_CASE("chord matter: the outer thirds' share measured from the particle", "[lighting][bake]") {
+  // bake/ChordMatterProfile against the share computed here another way: the radial fall-off
+  // (1 − r²)² along chords b from the centre, each span between the points where it crosses the
+  // first-matter threshold found by bisection (not by samples), the thirds' matter by the
+  // midpoint rule, the chords weighed by 2πb db · τ(b) (4000 chords, 2000 steps each).
+  const double threshold = defaults::kFirstMatterThreshold;
+  double weighted = 0.0, total = 0.0;
+  constexpr int kChords = 4000, kSteps = 2000;
+  for (int i = 0; i < kChords; ++i) {
+    const double b = (i + 0.5) / kChords;
+    if (ReferenceParticle::radialFalloff(static_cast<float>(b * b)) < threshold) continue;
+    double lo = 0.0, hi = std::sqrt(1.0 - b * b);  // the span's half-length
+    for (int k = 0; k < 60; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (ReferenceParticle::radialFalloff(static_cast<float>(b * b + mid * mid)) >= threshold ? lo : hi) = mid;
+    }
+    double all = 0.0, outer = 0.0;
+    for (int k = 0; k < kSteps; ++k) {
+      const double t = -lo + (k + 0.5) * 2.0 * lo / kSteps;
+      const double d = ReferenceParticle::radialFalloff(static_cast<float>(b * b + t * t));
+      all += d;
+      if (std::abs(t) > lo / 3.0) outer += d;
+    }
+    weighted += b * 0.5 * outer * (2.0 * lo / kSteps);
+    total += b * all * (2.0 * lo / kSteps);
+  }
+  const double radial = weighted / total;
+  const double measured = bake::measureChordOuterThird(ReferenceParticle(DensityModel::Radial, 1));
+  INFO("radial fall-off: here " << radial << ", measured " << measured);
+  CHECK(measured == Approx(radial).margin(0.005));
+  CHECK(radial < 0.28);  // mid-chord matter: well below the even 1/3
+  // a homogeneous sphere: even matter
+  CHECK(bake::measureChordOuterThird(ReferenceParticle(DensityModel::Sphere, 1)) == Approx(1.0 / 3.0).margin(0.002));
+  // the noise particle: the fall-off modulated, its matter mid-chord too
+  const Medium medium;
+  const double noise = bake::measureChordOuterThird(ReferenceParticle(medium.model, medium.seed));
+  INFO("noise particle " << noise);
+  CHECK(noise > 0.2);
+  CHECK(noise < 0.3);
 }

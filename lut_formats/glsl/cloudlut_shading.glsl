@@ -159,12 +159,25 @@ CLOUDLUT_FN float unitSphereExitDistance(vec3 x, vec3 d) {
   return max(-b + sqrt(max(b * b - c, 0.0f)), 0.0f);
 }
 
+// The share (dimensionless, [0, 1]) of a chord's optical depth that lies within the first share
+// u of the span from its first matter toward its last (the optical-depth table's channels 1 and
+// 2; u clamped to [0, 1]), the span cut in thirds that each hold their matter evenly, each outer
+// third a share `outerThird` of it and the middle one the rest: piecewise linear, slope
+// 3a, 3(1 − 2a), 3a over the thirds (a = outerThird, the table's chord_outer_third_share,
+// bake/ChordMatterProfile.h). a = 1/3 lays the matter evenly; the reference particle's metaball
+// fall-off puts most of it mid-chord (a ≈ 0.26).
+CLOUDLUT_FN float chordMatterShare(float u, float outerThird) {
+  float t = clamp(u, 0.0f, 1.0f) * 3.0f;
+  return outerThird * (min(t, 1.0f) + max(t - 2.0f, 0.0f)) + (1.0f - 2.0f * outerThird) * clamp(t - 1.0f, 0.0f, 1.0f);
+}
+
 // A particle's own optical depth toward the sun (dimensionless) at the point a share s of the
 // way along its sun chord, counted from the chord's sunward end: the chord's optical depth
-// tauChord laid as a linear ramp from its first matter to its last matter (shares of the chord,
-// the optical-depth table's channels 1 and 2), as the sun volume lays it (sunVolumeRampAt).
-CLOUDLUT_FN float ownSunRamp(float tauChord, float firstMatter, float lastMatter, float s) {
-  return tauChord * clamp((s - firstMatter) / max(lastMatter - firstMatter, 1e-6f), 0.0f, 1.0f);
+// tauChord laid from its first matter to its last matter (shares of the chord, the
+// optical-depth table's channels 1 and 2) as chordMatterShare lays it, with the table's share
+// outerThird in each outer third, as the sun volume does (sunVolumeRampAt).
+CLOUDLUT_FN float ownSunRamp(float tauChord, float firstMatter, float lastMatter, float s, float outerThird) {
+  return tauChord * chordMatterShare((s - firstMatter) / max(lastMatter - firstMatter, 1e-6f), outerThird);
 }
 
 // The same for the multiple table's homogeneous sphere (density ρT̄, the view chord's mean

@@ -12,6 +12,7 @@
 #include "core/Glsl.h"
 #include "core/LastMatter.h"
 #include "core/OwnSunDepth.h"
+#include "core/ParameterRules.h"
 #include "core/PhaseSampling.h"
 #include "core/TableLookup.h"
 
@@ -85,13 +86,13 @@ void tracePhotons(Tally& t, const ReferenceParticle& particle, double sigma, con
 // The own-term model's power by exit direction −v: per μ bin, the mean over the view directions v
 // in it of Σ over the chords of the disc facing v of (1 − e^{−τ}) J̄M(S, v, l, ρT̄) · C dA, with C
 // the own core shadow at the chord's mean scattering point x̄ (ownCoreShadow: the particle's own
-// τ toward the sun there, ownSunOpticalDepth, against the homogeneous sphere's; later-phase
-// asymmetry g, at most s.ownCoreShadowMax) (particle.frag.glsl's own term without its sunlight
-// factor, 1 for an isolated particle), times
-// the bin's exact solid angle 4π/bins (a bin's count of Fibonacci directions varies with l by
-// ±10%, which summing them would pass into K).
-void integrateModel(Tally& t, const Table4D& od, const Table4D& multiple, float rho, const glm::dvec3& l,
-                    float g, const AngularClosureSettings& s) {
+// τ toward the sun there, ownSunOpticalDepth with the table's outerThird, against the
+// homogeneous sphere's; later-phase asymmetry g, at most s.ownCoreShadowMax) (particle.frag.glsl's
+// own term without its sunlight factor, 1 for an isolated particle), times the bin's exact solid
+// angle 4π/bins (a bin's count of Fibonacci directions varies with l by ±10%, which summing them
+// would pass into K).
+void integrateModel(Tally& t, const Table4D& od, float outerThird, const Table4D& multiple, float rho,
+                    const glm::dvec3& l, float g, const AngularClosureSettings& s) {
   const float sigma = static_cast<float>(unitOpticalRadius(od));
   const ScatteringStorage storage = scatteringStorage(multiple);
   const float rhoMin = std::exp2(scatteringAxesRecord(multiple).x);
@@ -121,7 +122,7 @@ void integrateModel(Tally& t, const Table4D& od, const Table4D& multiple, float 
           const float share = glsl::meanScatteringShare(chord.firstMatter, lookupLastMatter(od, S, glm::vec3(v)),
                                                         chord.opticalDepth);
           const glm::vec3 x = S + share * chord.chordLength * glm::vec3(v);
-          shadow = glsl::ownCoreShadow(ownSunOpticalDepth(od, x, lf, rho),
+          shadow = glsl::ownCoreShadow(ownSunOpticalDepth(od, outerThird, x, lf, rho),
                                        glsl::homogeneousOwnSunDepth(x, lf, rhoChord, sigma), g, s.ownCoreShadowMax);
         }
         sum += shadow * scatteringFromStored(storage, stored, chord.opticalDepth);
@@ -144,6 +145,9 @@ std::optional<AngularClosure> computeAngularClosure(const Table4D& od, const Tab
       s.photonsPerDirection < 1 || s.viewDirections < 1 || s.discSide < 1 || !(s.log2RhoStep > 0.0f) ||
       !(s.ownCoreShadowMax >= 1.0f && s.ownCoreShadowMax <= kMaxOwnCoreShadowMax))
     throw std::invalid_argument("angular closure: settings out of range");
+  const float outerThird = chordOuterThird(od);  // how the sun volume lays the own chord
+  if (const std::string problem = rules::chordOuterThirdProblem(outerThird); !problem.empty())
+    throw std::invalid_argument("angular closure: optical_depth's chord_outer_third_share " + problem);
   const double sigma = unitOpticalRadius(od);
   const float g = phaseMeanCosine(later);
   const long long maxOrder = maxOrderOf(multiple);
@@ -164,7 +168,7 @@ std::optional<AngularClosure> computeAngularClosure(const Table4D& od, const Tab
     t.model.assign(s.muBins, 0.0);
     tracePhotons(t, particle, sigma * rho, l, first, later, s.photonsPerDirection, maxOrder, s.seed,
                  static_cast<std::uint64_t>(task), s.muBins);
-    integrateModel(t, od, multiple, rho, l, g, s);
+    integrateModel(t, od, outerThird, multiple, rho, l, g, s);
     reportProgress(progress, "angular closure", static_cast<double>(++done) / tasks);
   });
   AngularClosure c;

@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "bake/ChordMatterProfile.h"
 #include "core/Defaults.h"
 #include "core/Float4.h"
 #include "core/Glsl.h"
@@ -167,6 +168,7 @@ Table4D bakeOpticalDepth(const ReferenceParticle& particle, const OpticalDepthSe
   params["extinction_per_m"] = settings.extinction;
   params["radius_m"] = settings.radius;
   params["first_matter_threshold"] = defaults::kFirstMatterThreshold;
+  params["chord_outer_third_share"] = measureChordOuterThird(particle);
 
   // Entry points and frames per (φS, θS) node, directions' angles per (φv, θv) node: the chord
   // of node (i0..i3) runs along glsl::opticalDepthNodeDirection, its frame cached per entry point.

@@ -221,8 +221,9 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
   const Medium medium;  // the defaults (core/Defaults.h): noise model, seed 1, β, R, CS g 0.9 then 0.7
   std::string lutNote;
   const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
-  // Two LUT sets: converged and 18-order multiple scattering. One cache per format version:
-  // tables of an older version are not re-read (re-baked instead).
+  // Two LUT sets: converged and 18-order multiple scattering. One cache per format version and
+  // per change to what the bake writes (the closure's core shadow, the chords' outer-third
+  // share): tables baked before are not re-read (re-baked instead).
   struct LutRenderer {
     std::string suffix;
     std::unique_ptr<io::LutSet> luts;
@@ -231,7 +232,7 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
   std::vector<LutRenderer> lutRenderers;
   for (const int orders : {0, 18}) {
     const std::string tag = orders == 0 ? "" : "-" + std::to_string(orders);
-    const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + tag + (options.quick ? "-quick" : "-default") + "-closure-core-shadow-1.2");
+    const fs::path lutDir = cache / ("luts-v" + std::to_string(io::kFormatVersion) + tag + (options.quick ? "-quick" : "-default") + "-closure-core-shadow-1.2-chord-thirds");
     reportProgress(options.progress, "ground-truth: LUT set" + tag, 0.0);
     if (!ensureLutSet(lutDir, medium, options.quick, orders, lutNote)) continue;
     try {

@@ -12,8 +12,10 @@ namespace cloudlut {
 // τ_own (dimensionless) at point x of the unit sphere (particle space) of a particle of density
 // scale rho lit from the unit direction l (toward the sun): the particle's chord through x along
 // the sun, entered on its sunward side in direction −l (seed eq. 1 from the table:
-// ρ·σ·L·T̄), laid as a linear ramp from its first matter to its last matter (ownSunRamp,
-// cloudlut_shading.glsl; core/LastMatter.h), read at x. 0 outside the sphere.
-float ownSunOpticalDepth(const Table4D& opticalDepth, const glm::vec3& x, const glm::vec3& l, float rho);
+// ρ·σ·L·T̄), laid from its first matter to its last matter with the share outerThird in each
+// outer third (ownSunRamp, cloudlut_shading.glsl; the table's chordOuterThird,
+// core/TableLookup.h; core/LastMatter.h), read at x. 0 outside the sphere.
+float ownSunOpticalDepth(const Table4D& opticalDepth, float outerThird, const glm::vec3& x, const glm::vec3& l,
+                         float rho);
 
 }  // namespace cloudlut

@@ -32,6 +32,12 @@ std::string radiusProblem(double radius) {
   return {};
 }
 
+std::string chordOuterThirdProblem(double share) {
+  if (!std::isfinite(share) || !(share >= 0.0) || share > 0.5)
+    return "must be a number in [0, 0.5] (got " + number(share) + ")";
+  return {};
+}
+
 std::string opticalRadiusProblem(double beta, double radius) {
   const double tau = beta * radius;
   if (!std::isfinite(tau) || !(tau > 0.0) || tau > kMaxUnitOpticalRadius)

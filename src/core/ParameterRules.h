@@ -31,6 +31,10 @@ std::string extinctionProblem(double extinctionPerMetre);
 std::string radiusProblem(double radiusMetres);
 // The problem with the product β·R (dimensionless), or "".
 std::string opticalRadiusProblem(double extinctionPerMetre, double radiusMetres);
+// The problem with an optical-depth table's chord_outer_third_share (dimensionless; the share
+// of a chord's optical depth in each outer third of its matter, bake/ChordMatterProfile.h), or
+// "": in [0, ½] (½: all of it in the outer thirds; 1/3: laid evenly).
+std::string chordOuterThirdProblem(double share);
 // The problem with a phase function's parameter for its kind, or "": g in (−1, 1) for
 // Henyey–Greenstein and Cornette–Shanks, d in [5, 50] µm for Jendersie–d'Eon (its fit's range),
 // anything finite for the isotropic phase.

@@ -1,6 +1,7 @@
 #include "core/TableLookup.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -14,6 +15,13 @@ float unitOpticalRadius(const Table4D& table) {
   const double beta = p.value("extinction_per_m", defaults::kExtinctionPerMetre);
   const double radius = p.value("radius_m", defaults::kParticleRadiusMetres);
   return static_cast<float>(beta * radius);
+}
+
+float chordOuterThird(const Table4D& opticalDepth) {
+  const auto& p = opticalDepth.parameters();
+  const auto it = p.find("chord_outer_third_share");
+  if (it == p.end()) return 1.0f / 3.0f;
+  return it->is_number() ? it->get<float>() : std::numeric_limits<float>::quiet_NaN();
 }
 
 OpticalDepthSample lookupOpticalDepth(const Table4D& table, const glm::vec3& S,

@@ -59,4 +59,11 @@ float scatteringFromStored(ScatteringStorage storage, float stored, float tau);
 // σ = extinction·radius of a table's parameters: the optical radius of a particle of ρ = 1.
 float unitOpticalRadius(const Table4D& table);
 
+// The optical-depth table's chord_outer_third_share (dimensionless; bake/ChordMatterProfile.h):
+// the share of a chord's optical depth in each outer third of its matter, as the renderer's
+// volumes lay it (chordMatterShare). 1/3, matter laid evenly, for a table that records none
+// (baked before it was measured); NaN when it is not a number (callers reject it, naming the
+// field: ShadingTables).
+float chordOuterThird(const Table4D& opticalDepth);
+
 }  // namespace cloudlut

@@ -107,6 +107,11 @@ void checkTableParameters(const nlohmann::json& p, const std::filesystem::path& 
   for (const char* key : {"first_phase", "later_phase"})
     if (p.contains(key) && !rules::phaseFromJsonChecked(p[key], problem)) fail(key, problem);
   if (p.contains("seed") && !rules::seedFromJson(p["seed"], problem)) fail("seed", problem);
+  if (p.contains("chord_outer_third_share")) {
+    const std::optional<double> v = rules::numberFromJson(p["chord_outer_third_share"], problem);
+    if (!v) fail("chord_outer_third_share", problem);
+    if (problem = rules::chordOuterThirdProblem(*v); !problem.empty()) fail("chord_outer_third_share", problem);
+  }
   if (p.contains("angular_closure") && !angularClosureFromJson(p["angular_closure"], problem))
     fail("angular_closure", problem);
   if (p.contains("density_model")) {

@@ -11,10 +11,13 @@
 namespace cloudlut::render {
 namespace {
 
-const std::vector<std::string> kFiles = {"cloudlut_geometry.glsl", "cloudlut_phase.glsl", "cloudlut_sampling.glsl",
-                                         "cloudlut_shading.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
-                                         "sun_chord_map.glsl", "cascade_columns.glsl", "sun_volume_sampling.glsl",
-                                         "diffusion_volume.comp.glsl"};
+// the shared GLSL and the sun volume's sampling, then the pass
+std::vector<std::string> filesFor(const char* pass) {
+  return {"cloudlut_geometry.glsl", "cloudlut_phase.glsl",      "cloudlut_sampling.glsl",
+          "cloudlut_shading.glsl",  "sun_volume.glsl",          "sun_volume_chord.glsl",
+          "sun_chord_map.glsl",     "cascade_columns.glsl",     "sun_volume_sampling.glsl",
+          pass};
+}
 constexpr unsigned kGroup = 4;  // the shader's local size per axis
 // Successive over-relaxation of the red-black sweeps: 1.8 reached on the 1419-particle patch in
 // 800 sweeps what plain Gauss-Seidel had not in 1600 (docs/LIGHTING.md).
@@ -24,8 +27,10 @@ constexpr int kCoarseUnit = 2;  // texture unit of the coarser level's field (pr
 }  // namespace
 
 DiffusionVolume::DiffusionVolume(const GlFunctions& gl, const GlContext& context) : gl_(gl), context_(context) {
-  for (int stage = 0; stage < 6; ++stage)
-    stages_[stage] = linkComputeProgram(gl, kFiles, glslDefine("STAGE", stage) + SunVolume::samplingDefines());
+  for (int stage = 0; stage < 5; ++stage)
+    stages_[stage] = linkComputeProgram(gl, filesFor("diffusion_volume.comp.glsl"),
+                                        glslDefine("STAGE", stage) + SunVolume::samplingDefines());
+  beside_.program = linkComputeProgram(gl, filesFor("diffusion_beside.comp.glsl"), SunVolume::samplingDefines());
 }
 
 DiffusionVolume::~DiffusionVolume() { release(); }
@@ -37,7 +42,7 @@ void DiffusionVolume::release() {
     l.nodes = glm::ivec3(0);
   }
   deleteTexture(gl_, flux_);
-  deleteTexture(gl_, beside_);
+  deleteTexture(gl_, beside_.texture);
   levelCount_ = 0;
 }
 
@@ -58,9 +63,9 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
       dims = (dims + 1) / 2;
     }
     flux_ = createFloatTexture3D(gl_, context_, "the diffusion volume", n.x, n.y, n.z, 4, nullptr);
-    besideLevel_ = std::min(levelCount_ - 1, 1);
-    const glm::ivec3 b = levels_[besideLevel_].nodes;
-    beside_ = createFloatTexture3D(gl_, context_, "the diffusion volume", b.x, b.y, b.z, 1, nullptr);
+    beside_.level = std::min(levelCount_ - 1, 1);
+    const glm::ivec3 b = levels_[beside_.level].nodes;
+    beside_.texture = createFloatTexture3D(gl_, context_, "the diffusion volume", b.x, b.y, b.z, 1, nullptr);
     nodes_ = n;
   }
   worldToNode_ = grid.toGrid[0];
@@ -118,11 +123,18 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
   const glm::ivec3 d = use(2, 0);
   gl_.BindImageTexture(3, flux_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
   dispatch(d);
-  const glm::ivec3 b = use(5, besideLevel_);
-  ProgramUniforms(gl_, stages_[5].id()).set("uBesideOffset", besideOffset);
-  ProgramUniforms(gl_, stages_[5].id()).set("uBesideStride", static_cast<float>(1 << besideLevel_));
-  gl_.BindImageTexture(4, beside_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
-  dispatch(b);
+  {  // the weight of the cloud beside, on its level
+    gl_.UseProgram(beside_.program.id());
+    const ProgramUniforms u(gl_, beside_.program.id());
+    sun.bind(u, sunUnit);
+    const glm::ivec3 b = levels_[beside_.level].nodes;
+    gl_.Uniform3i(beside_.program.uniform("uNodes"), b.x, b.y, b.z);
+    gl_.UniformMatrix4fv(beside_.program.uniform("uNodeToWorld"), 1, GL_FALSE, glm::value_ptr(toWorld));
+    u.set("uBesideOffset", besideOffset);
+    u.set("uBesideStride", beside_.stride());
+    gl_.BindImageTexture(4, beside_.texture, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    dispatch(b);
+  }
   for (GLuint unit = 0; unit < 5; ++unit) gl_.BindImageTexture(unit, 0, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
   checkGlError(gl_, "solving the diffusion volume");
   built_ = true;
@@ -137,10 +149,10 @@ void DiffusionVolume::bind(const ProgramUniforms& uniforms, int unit) const {
   gl_.UniformMatrix4fv(uniforms.location("uDiffusionToNode"), 1, GL_FALSE, glm::value_ptr(worldToNode_));
   uniforms.set("uDiffusionFade", fadeNodes_);
   gl_.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit + 1));
-  gl_.BindTexture(GL_TEXTURE_3D, beside_);
+  gl_.BindTexture(GL_TEXTURE_3D, beside_.texture);
   uniforms.set("uDiffusionBeside", unit + 1);
-  uniforms.set("uDiffusionBesideStride", static_cast<float>(1 << besideLevel_));
-  const glm::ivec3 b = levels_[besideLevel_].nodes;
+  uniforms.set("uDiffusionBesideStride", beside_.stride());
+  const glm::ivec3 b = levels_[beside_.level].nodes;
   gl_.Uniform3i(uniforms.location("uDiffusionBesideNodes"), b.x, b.y, b.z);
 }
 

@@ -6,7 +6,8 @@
 // extinction), lit through the sun volume. The particle shader reads the fluence and flux at
 // each fragment's mean scattering point (shaders/diffusion_sampling.glsl) and takes a share of
 // its multiple scattering from it (diffusionShareOfMultiple, cloudlut_shading.glsl), larger
-// where the pass finds cloud beside the point across the sun (cloudBesideWeight).
+// where the pass finds cloud beside the point across the sun (cloudBesideWeight,
+// shaders/diffusion_beside.comp.glsl).
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -55,7 +56,7 @@ class DiffusionVolume {
  private:
   const GlFunctions& gl_;
   const GlContext& context_;
-  GlProgram stages_[6];  // diffusion_volume.comp.glsl's STAGE 0 … 5
+  GlProgram stages_[5];  // diffusion_volume.comp.glsl's STAGE 0 … 4
   struct Level {
     GLuint medium = 0, field = 0;  // σ* and q; φ and D
     glm::ivec3 nodes{0};
@@ -64,8 +65,15 @@ class DiffusionVolume {
   Level levels_[kLevels];
   int levelCount_ = 0;
   GLuint flux_ = 0;  // φ and J on the finest level (the shader's)
-  GLuint beside_ = 0;  // the weight of the cloud beside each node of level besideLevel_ (the shader's)
-  int besideLevel_ = 0;
+  // The weight of the cloud beside each node of one level (diffusion_beside.comp.glsl), for the
+  // particle shader's share: the second level, or the only one.
+  struct Beside {
+    GlProgram program;
+    GLuint texture = 0;
+    int level = 0;
+    float stride() const { return static_cast<float>(1 << level); }  // finest nodes per node
+  };
+  Beside beside_;
   glm::ivec3 nodes_{0};
   glm::mat4 worldToNode_{1.0f};
   float fadeNodes_ = 0.0f;

@@ -132,17 +132,13 @@ struct Renderer::Impl {
       dropped = occlusion.run(count, s, particles.tables().unitOpticalRadius(), stats != nullptr);
     const bool sun = needsSunVolume(s) && count > 0;
     if (sun)
-      skipped = sunVolume.build(grid, count, particles.tables().opticalDepthTexture(),
-                                particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(),
-                                stats != nullptr, s.sunChordMap);
+      skipped = sunVolume.build(grid, count, particles.tables().splatTable(), stats != nullptr, s.sunChordMap);
     const bool zenith = needsZenithVolume(s) && count > 0;
     if (zenith)
-      zenithVolume.build(zenithGrid, count, particles.tables().opticalDepthTexture(),
-                         particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), false);
+      zenithVolume.build(zenithGrid, count, particles.tables().splatTable(), false);
     diffusion.clear();
     if (sun && diffusionGrid.grid.cascades == 1 && s.diffusionShare > 0.0f && (s.terms & kTermMultiple) != 0) {
-      diffusionColumns.build(diffusionGrid.grid, count, particles.tables().opticalDepthTexture(),
-                             particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), false);
+      diffusionColumns.build(diffusionGrid.grid, count, particles.tables().splatTable(), false);
       diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionSweeps,
                       diffusionGrid.besideOffset, diffusionGrid.fadeNodes);
     }
@@ -377,10 +373,9 @@ struct Renderer::Impl {
   }
   // A box of kDiffusionNodes − 9 spacings a side over heights [yLo, yHi] and three spacings
   // beyond, the spacing kDiffusionAheadSpacing times the wanted one (s.diffusionSpacing times the
-  // particle radius `radius`), its back face
-  // kDiffusionBehind of its side behind the eye along the view's horizontal direction (centred on
-  // the eye when the view is vertical). The shader fades the field out over kDiffusionFadeNodes
-  // inside its sides, where it cuts clouds.
+  // particle radius `radius`), its back face kDiffusionBehind of its side behind the eye along the
+  // view's horizontal direction (centred on the eye when the view is vertical). The shader fades
+  // the field out over kDiffusionFadeNodes inside its sides, where it cuts clouds.
   static DiffusionGrid diffusionGridAhead(const RenderSettings& s, float yLo, float yHi, float radius) {
     const float spacing = kDiffusionAheadSpacing * s.diffusionSpacing * radius;
     const float side = static_cast<float>(kDiffusionNodes - 9) * spacing;
@@ -429,8 +424,7 @@ struct Renderer::Impl {
     const SunVolumeGrid grid = given ? *given : sunGridFor(list, s);
     if (list.empty()) return {grid, {}, 0};
     const std::size_t skipped =
-        sunVolume.build(grid, list.size(), particles.tables().opticalDepthTexture(),
-                        particles.tables().opticalDepthDims(), particles.tables().unitOpticalRadius(), true);
+        sunVolume.build(grid, list.size(), particles.tables().splatTable(), true);
     return {grid, sunVolume.readBack(), skipped};
   }
 

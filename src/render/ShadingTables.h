@@ -16,6 +16,7 @@
 #include "render/GlContext.h"
 #include "render/GlFunctions.h"
 #include "render/GlResources.h"
+#include "render/SplatTable.h"
 
 namespace cloudlut::render {
 
@@ -24,7 +25,7 @@ class ShadingTables {
   // Uses the set's "optical_depth", "single_scattering" (log2 mean source) and
   // "multiple_scattering" (mean source) tables, and the multiple table's "angular_closure" when it
   // has one; FileError naming the directory when one is missing or unusable (storage, channels,
-  // payload size, non-finite values, first_phase, angular_closure).
+  // payload size, non-finite values, first_phase, angular_closure, chord_outer_third_share).
   ShadingTables(const GlFunctions& gl, const GlContext& context, const io::LutSet& luts);
   ~ShadingTables();
   ShadingTables(const ShadingTables&) = delete;
@@ -36,8 +37,9 @@ class ShadingTables {
   // Mean cosine ∫ μ P(μ) dω of the multiple table's later phase function (its `later_phase`;
   // dimensionless): the asymmetry of the light's diffuse transport between particles.
   float laterPhaseAsymmetry() const { return laterAsymmetry_; }
-  GLuint opticalDepthTexture() const { return opticalDepth_.texture; }
-  const glm::vec4& opticalDepthDims() const { return opticalDepth_.dims; }
+  // The optical-depth table for the sun and zenith volumes' splat, with its
+  // chord_outer_third_share (1/3 when the table records none).
+  SplatTable splatTable() const { return {opticalDepth_.texture, opticalDepth_.dims, unitOpticalRadius_, chordOuterThird_}; }
 
   // Binds the tables to texture units 0 to 2 and sets the particle program's uniforms that
   // describe them (uOpticalDepth*, uSingle*, uMultiple*, uUnitOpticalRadius, uFirstPhase*,
@@ -64,6 +66,7 @@ class ShadingTables {
   Texture opticalDepth_, single_, multiple_;
   float unitOpticalRadius_ = 0;
   float referenceRadius_ = 0;
+  float chordOuterThird_ = 1.0f / 3.0f;
   int firstPhaseKind_ = 2;
   float firstPhaseParam_ = 0.9f;
   float laterAsymmetry_ = 0.0f;

@@ -61,10 +61,10 @@ SunVolume::~SunVolume() {
   if (texture_) gl_.DeleteTextures(1, &texture_);
 }
 
-std::size_t SunVolume::build(const SunVolumeGrid& grid, std::size_t count, GLuint opticalDepthTexture,
-                             const glm::vec4& opticalDepthDims, float sigma, bool countOverflow,
-                             bool keepChords) {
+std::size_t SunVolume::build(const SunVolumeGrid& grid, std::size_t count, const SplatTable& table,
+                             bool countOverflow, bool keepChords) {
   grid_ = grid;
+  chordOuterThird_ = table.chordOuterThird;
   mapped_ = false;
   chordsNeeded_ = 0;
   const glm::ivec3 d = grid.dims;
@@ -95,16 +95,17 @@ std::size_t SunVolume::build(const SunVolumeGrid& grid, std::size_t count, GLuin
   deltas_.bind(kDeltasBinding);
   gl_.BindImageTexture(kTauImageUnit, texture_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
   gl_.ActiveTexture(GL_TEXTURE0);
-  gl_.BindTexture(GL_TEXTURE_3D, opticalDepthTexture);
+  gl_.BindTexture(GL_TEXTURE_3D, table.texture);
   const auto run = [&](int stage) {
     const GlProgram& p = stages_[stage];
     gl_.UseProgram(p.id());
     const ProgramUniforms u(gl_, p.id());
     gl_.Uniform1ui(p.uniform("uCount"), static_cast<GLuint>(count));
     u.set("uSun", grid.sun);
-    u.set("uSigma", sigma);
+    u.set("uSigma", table.sigma);
+    u.set("uChordOuterThird", table.chordOuterThird);
     u.set("uOpticalDepth", 0);
-    u.set("uOpticalDepthDims", opticalDepthDims);
+    u.set("uOpticalDepthDims", table.dims);
     u.set("uCascades", grid.cascades);
     u.set("uMapChords", mapped_ ? 1 : 0);
     gl_.Uniform3i(p.uniform("uDims"), d.x, d.y, d.z);
@@ -164,6 +165,7 @@ void SunVolume::bind(const ProgramUniforms& uniforms, int unit, const std::strin
                        glm::value_ptr(grid_.toWorld[0]));
   uniforms.set(name("Columns").c_str(), grid_.sun);
   uniforms.set(name("LocalCloud").c_str(), grid_.localCloud);
+  uniforms.set(name("ChordOuterThird").c_str(), chordOuterThird_);
 }
 
 void SunVolume::bindChordMap() const {

@@ -22,6 +22,7 @@
 #include "render/GlResources.h"
 #include "render/GpuParticleRecord.h"
 #include "render/GpuStorage.h"
+#include "render/SplatTable.h"
 #include "render/SunVolumeGrid.h"
 
 namespace cloudlut::render {
@@ -41,18 +42,18 @@ class SunVolume {
   SunVolume& operator=(const SunVolume&) = delete;
 
   // Fills the volume of `grid` from the first `count` particle records, their chords from the
-  // optical-depth texture (its dims; σ the unit optical radius). UsageError when the grid needs
+  // optical-depth table, laid as it says (SplatTable). UsageError when the grid needs
   // more storage than this OpenGL allows. With keepChords it fills the chord map too (the sun
   // volume; the zenith volume has no use for it), if the budget holds every chord of the
   // frame (chordMapComplete; otherwise the particle shader computes them). Returns the
   // particle-cascade pairs skipped for a footprint over kSunFootprintMax when `countOverflow`
   // (0 otherwise).
-  std::size_t build(const SunVolumeGrid& grid, std::size_t count, GLuint opticalDepthTexture,
-                    const glm::vec4& opticalDepthDims, float sigma, bool countOverflow, bool keepChords = false);
+  std::size_t build(const SunVolumeGrid& grid, std::size_t count, const SplatTable& table, bool countOverflow,
+                    bool keepChords = false);
 
   // Binds the volume texture to `unit` and sets the sampling uniforms of
   // sun_volume_sampling.glsl (uSunTau, uSunCascades, uSunDims, uSunToGrid[], uSunToWorld[],
-  // uSunColumns) on the program in use; `prefix` names another set of them (the zenith volume's
+  // uSunColumns, uSunLocalCloud, uSunChordOuterThird) on the program in use; `prefix` names another set of them (the zenith volume's
   // "uZenith", zenith_volume_sampling.glsl), whose missing uniforms are left alone.
   void bind(const ProgramUniforms& uniforms, int unit, const std::string& prefix = "uSun") const;
   // Binds the chord map's two buffers (shaders/sun_chord_map.glsl) for the particle shader.
@@ -90,6 +91,7 @@ class SunVolume {
   GLuint texture_ = 0;
   glm::ivec3 textureDims_{0};
   SunVolumeGrid grid_;
+  float chordOuterThird_ = 1.0f / 3.0f;  // the last build's (SplatTable), for the sampling shaders
 };
 
 }  // namespace cloudlut::render

@@ -16,7 +16,7 @@ uniform ivec3 uDiffusionBesideNodes;  // its texels per axis
 // it rises from 0 three nodes inside a horizontal side (grid axes 0 and 1; the clear air the grid
 // keeps beyond a cloud) to 1 uDiffusionFade nodes further in: there the box cuts clouds, and
 // their light leaks out of the cut; and the weight of the cloud beside x across the sun
-// (`beside`, cloudBesideWeight, trilinear between its nodes; 0 where the presence is).
+// (`beside`, cloudBesideWeight, trilinear between its nodes; 0 outside the grid or without one).
 vec4 diffusionFieldAt(vec3 x, out float presence, out float beside) {
   vec3 g = (uDiffusionToNode * vec4(x, 1.0)).xyz;
   vec3 last = vec3(uDiffusionNodes) - 1.0;

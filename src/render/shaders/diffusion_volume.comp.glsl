@@ -15,9 +15,8 @@
 //   STAGE 3  one level coarser (coarse node I at fine node 2I, spacing doubled): σ* and q as the
 //            full-weighting average of the fine nodes around, the field started as in STAGE 0.
 //   STAGE 4  the coarse level's solution, trilinear, as the start of the finer level's sweeps.
-//   STAGE 5  per node of the level uBesideStride times coarser than the finest (node I at fine
-//            node uBesideStride·I): the weight of the cloud beside it across the sun
-//            (cloudBesideWeight), uBesideOffset away, for the particle shader's share.
+// After the solve, diffusion_beside.comp.glsl weighs the cloud beside the nodes for the particle
+// shader's share.
 // The solve runs coarse to fine (render/DiffusionVolume.cpp): the coarsest level's sweeps carry
 // the light across the cloud, each finer level's only the detail.
 
@@ -39,9 +38,6 @@ layout(rgba32f, binding = 3) uniform image3D uFlux;   // φ, J (STAGE 2)
 uniform ivec3 uFineNodes;       // STAGE 3: the finer level's nodes
 uniform sampler3D uCoarseField; // STAGE 4: the coarser level's φ, D (texel = node)
 uniform ivec3 uCoarseNodes;     // STAGE 4
-layout(r32f, binding = 4) uniform image3D uBeside;  // STAGE 5: the weight of the cloud beside each node
-uniform float uBesideOffset;    // STAGE 5: how far beside (world units)
-uniform float uBesideStride;    // STAGE 5: fine nodes per node (1 or 2)
 
 // The grid axis of the columns: a column volume's slices are its grid's third axis (SunVolumeGrid).
 const int kVerticalAxis = 2;
@@ -57,12 +53,6 @@ void startField(ivec3 n, float sigmaStar, float gStar, float hMin) {
 void main() {
   ivec3 n = ivec3(gl_GlobalInvocationID);
   if (outside(n)) return;
-#if STAGE == 5
-  vec3 x = (uNodeToWorld * vec4(uBesideStride * vec3(n), 1.0)).xyz;
-  float column = localCloudAlongSun(x, sunOpticalDepth(x)).y;
-  imageStore(uBeside, n, vec4(cloudBesideWeight(localColumnsBeside(x, uBesideOffset), column), 0.0, 0.0, 0.0));
-  return;
-#endif
   float f = deltaEddingtonForwardShare(uLaterAsymmetry);
   float gStar = deltaEddingtonAsymmetry(uLaterAsymmetry);
   float hMin = min(uSpacing.x, min(uSpacing.y, uSpacing.z));

@@ -1,7 +1,7 @@
 // sun_volume.glsl — the sun optical-depth volume: the one definition of its grid and of how a
 // particle's chord is laid along a column, shared by the splat and integration passes
-// (sun_volume_build.comp.glsl), the particle shader that samples it, and the C++ that checks it
-// (render/SunVolumeGrid.h compiles this file through GLM).
+// (sun_volume_build.comp.glsl) and the shaders that sample it (sun_volume_sampling.glsl); the
+// grid's C++ side is render/SunVolumeGrid.h.
 //
 // The grid. Columns are sun rays: a world point x maps to grid coordinates g = G·x + o (G, o
 // the affine map of one cascade, sunVolumeToGrid), where g.z = w is the slice coordinate along
@@ -13,20 +13,31 @@
 //
 // A particle's contribution to one column (seed §4.1 table, eq. 1): the chord of the column's
 // sun ray through the particle has the optical depth τ_c = ρ·σ·L·T̄ of the optical-depth table,
-// laid linearly along the column from the chord's first matter (table channel 1) on its sun
-// side to its last matter: τ rises from 0 at w = wFirst to τ_c at w = wFar (< wFirst) and stays
-// τ_c beyond. This ramp is written as its second difference in w (two weighted deltas, split
-// between the integer slices about each end) and recovered exactly at the integer slices by a
-// double prefix sum from the sun side (see sunVolumeRampAt).
+// laid along the column from the chord's first matter (table channel 1) on its sun side, at
+// w = wFirst, to its last matter, at wFar < wFirst, as the particle holds it (chordMatterShare,
+// cloudlut_shading.glsl, with the table's chord_outer_third_share: evenly within each third of
+// the span, the middle third densest for the metaball fall-off), and
+// τ_c beyond. This ramp is written as its second difference in w (a delta of slope at each of
+// the four ends of the thirds, split between the integer slices about it) and recovered exactly
+// at the integer slices by a double prefix sum from the sun side (see sunVolumeRampAt).
 
 #ifndef CLOUDLUT_FN
 #define CLOUDLUT_FN
 #endif
 
-// Optical depth of the ramp of one chord at slice coordinate w: τ_c·clamp((wFirst − w)/(wFirst − wFar), 0, 1).
-CLOUDLUT_FN float sunVolumeRampAt(float tauChord, float wFirst, float wFar, float w) {
+// Optical depth of the ramp of one chord at slice coordinate w (dimensionless):
+// τ_c·chordMatterShare((wFirst − w)/(wFirst − wFar), a), a the table's chord_outer_third_share.
+CLOUDLUT_FN float sunVolumeRampAt(float tauChord, float wFirst, float wFar, float w, float outerThird) {
   float span = max(wFirst - wFar, 1e-6f);
-  return tauChord * clamp((wFirst - w) / span, 0.0f, 1.0f);
+  return tauChord * chordMatterShare((wFirst - w) / span, outerThird);
+}
+
+// The ramp's slope steps (per slice, for a chord of τ_c = span = 1) at its first matter, at the
+// ends of its first and second thirds and at its last matter: the slope of chordMatterShare,
+// 3a, 3(1 − 2a), 3a over the thirds (a = outerThird), rising from 0 and back to it.
+CLOUDLUT_FN vec4 sunVolumeRampSteps(float outerThird) {
+  float a = outerThird;
+  return vec4(3.0f * a, 3.0f * (1.0f - 3.0f * a), -3.0f * (1.0f - 3.0f * a), -3.0f * a);
 }
 
 // Weight of the ramp's delta at wEdge carried by integer slice k (linear split between

@@ -4,7 +4,7 @@
 // defines STAGE, SUN_CASCADES_MAX, SUN_FOOTPRINT_MAX and SUN_FIXED_SCALE (render/SunVolume.cpp):
 //   STAGE 0  one invocation per particle: for every column of every cascade its bounding sphere
 //            shadows, the chord of the column's sun ray through the ellipsoid, its optical depth
-//            from the optical-depth table (seed §4.1) and the two deltas of its ramp, added as
+//            from the optical-depth table (seed §4.1) and the slope steps of its ramp (addRamp), added as
 //            fixed-point integers (order-independent, so the volume does not depend on the
 //            order or the timing of the invocations); with uMapChords, the chords are kept in
 //            the chord map (sun_chord_map.glsl) for the particle shader;
@@ -25,6 +25,7 @@ uniform ivec3 uDims;             // columns Nu, Nv and slices Nw of one cascade
 uniform mat4 uToGrid[SUN_CASCADES_MAX];
 uniform mat4 uToWorld[SUN_CASCADES_MAX];
 uniform int uMapChords;          // 1: fill the chord map (the sun volume; not the zenith volume)
+uniform float uChordOuterThird;  // the optical-depth table's chord_outer_third_share (chordMatterShare)
 
 layout(std430, binding = 5) buffer SunDeltas {
   uint footprintOverflow;        // particle-cascade pairs skipped: footprint over SUN_FOOTPRINT_MAX
@@ -38,18 +39,42 @@ int columnBase(int cascade, int i, int j) {
   return ((cascade * uDims.y + j) * uDims.x + i) * (uDims.z + 1);
 }
 
-// Adds e·(1 − f) at slice floor(w) and e·f at floor(w) + 1 (sunVolumeDeltaSplit). A delta at
-// slice m only changes τ below it (k < m), so m ≤ 0 is dropped; the grid holds every particle,
-// so m > Nw is clamped (it cannot occur but for rounding).
-void addDelta(int base, float w, float e) {
+// The integer amount (fixed point) of a slope step e at slice coordinate w carried by its two
+// slices floor(w) and floor(w) + 1 (sunVolumeDeltaSplit).
+ivec2 stepAmounts(float w, float e) {
   vec2 split = sunVolumeDeltaSplit(w);
+  return ivec2(round(clamp(e * split * SUN_FIXED_SCALE, -1.0e4 * SUN_FIXED_SCALE, 1.0e4 * SUN_FIXED_SCALE)));
+}
+
+// Adds the amounts to slices floor(w) and floor(w) + 1. A delta at slice m only changes τ below
+// it (k < m), so m ≤ 0 is dropped; the grid holds every particle, so m > Nw is clamped (it
+// cannot occur but for rounding).
+void addStep(int base, float w, ivec2 amounts) {
   int m = int(floor(w));
   for (int s = 0; s < 2; ++s) {
     int slot = min(m + s, uDims.z);
-    if (slot <= 0) continue;
-    int value = int(round(clamp(e * split[s], -1.0e4, 1.0e4) * SUN_FIXED_SCALE));
-    if (value != 0) atomicAdd(deltas[base + slot], value);
+    if (slot <= 0 || amounts[s] == 0) continue;
+    atomicAdd(deltas[base + slot], amounts[s]);
   }
+}
+
+// Lays one chord's ramp (sunVolumeRampAt) into the column at `base`: a slope step at each end
+// of its thirds (sunVolumeRampSteps), e the ramp's mean slope τ_c/(wFirst − wFar) per slice.
+// The last slot takes what the others leave, so that the integer steps sum to 0 and the slope
+// past the chord is 0 (no drift of τ down the column, whatever the rounding).
+void addRamp(int base, float wFirst, float wFar, float e) {
+  vec4 steps = e * sunVolumeRampSteps(uChordOuterThird);
+  float third = (wFirst - wFar) / 3.0;
+  vec4 w = vec4(wFirst, wFirst - third, wFar + third, wFar);
+  int sum = 0;
+  for (int q = 0; q < 3; ++q) {
+    ivec2 amounts = stepAmounts(w[q], steps[q]);
+    addStep(base, w[q], amounts);
+    sum += amounts.x + amounts.y;
+  }
+  ivec2 last = stepAmounts(w[3], steps[3]);
+  last.y = -sum - last.x;
+  addStep(base, w[3], last);
 }
 
 // The columns of cascade k that the bounding sphere (centre, reach: world) of a particle
@@ -103,10 +128,7 @@ void main() {
                                   toParticle, rho, uSun, tau, wFirst, wFar);
         if (first >= 0) sunChords[first + (j - lo.y) * size.x + (i - lo.x)] = vec4(hit ? tau : 0.0, wFirst, wFar, 0.0);
         if (!hit) continue;
-        float e = tau / max(wFirst - wFar, 1e-6);
-        int base = columnBase(k, i, j);
-        addDelta(base, wFirst, e);
-        addDelta(base, wFar, -e);
+        addRamp(columnBase(k, i, j), wFirst, wFar, tau / max(wFirst - wFar, 1e-6));
       }
   }
 }

@@ -32,7 +32,7 @@ bool sunColumnChord(sampler3D opticalDepth, vec4 opticalDepthDims, float sigma, 
   wFirst = wSun - first * (wSun - wExit);
   wFar = wSun - last * (wSun - wExit);
   // At least one slice long, about the same middle, within the chord: the volume resolves no
-  // less, and a shorter ramp's two deltas would cancel in fixed point.
+  // less, and a shorter ramp's steps would cancel in fixed point.
   if (wFirst - wFar < 1.0) {
     float middle = 0.5 * (wFirst + wFar);
     wFirst = min(middle + 0.5, wSun);

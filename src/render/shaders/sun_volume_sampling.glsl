@@ -12,6 +12,7 @@ uniform mat4 uSunToGrid[SUN_CASCADES_MAX];
 uniform mat4 uSunToWorld[SUN_CASCADES_MAX];
 uniform vec3 uSunColumns;        // unit direction of the columns (the sun, raised off the horizon if need be)
 uniform float uSunLocalCloud;    // window along the columns that holds one cloud (world units; localCloudColumn)
+uniform float uSunChordOuterThird;  // how the splat laid each chord (the table's chord_outer_third_share)
 
 // Optical depth (dimensionless) toward the sun of the particles in front of world point x,
 // from the finest cascade whose columns hold x (trilinear; a point outside every cascade is
@@ -68,8 +69,8 @@ vec4 sunOpticalDepths(vec3 x, int particle, vec3 centre, mat3 toParticle, float 
                           toParticle, rho, uSunColumns, tau, wFirst, wFar))
         continue;
 #endif
-      own += weight * mix(sunVolumeRampAt(tau, wFirst, wFar, w0), sunVolumeRampAt(tau, wFirst, wFar, w0 + 1.0), fw);
-      ownColumn += weight * sunVolumeRampAt(tau, wFirst, wFar, 0.0);
+      own += weight * mix(sunVolumeRampAt(tau, wFirst, wFar, w0, uSunChordOuterThird), sunVolumeRampAt(tau, wFirst, wFar, w0 + 1.0, uSunChordOuterThird), fw);
+      ownColumn += weight * sunVolumeRampAt(tau, wFirst, wFar, 0.0, uSunChordOuterThird);
     }
     column = max(column, total);
     return vec4(max(total - own, 0.0), total, column, max(column - ownColumn, 0.0));
