@@ -81,6 +81,19 @@ TEST_CASE("own core shadow: the shared functions against their definitions", "[c
   }
   for (const float s : {0.0f, 0.13f, 0.37f, 0.5f, 0.71f, 1.0f})
     CHECK(glsl::chordMatterShare(s, 1.0f / 3.0f) == Approx(s).margin(1e-6));
+  // the splat's slope steps: the changes of the share's slope (central differences inside each
+  // third, 0 outside the span) across u = 0, 1/3, 2/3, 1
+  for (const float a : {0.0f, 0.265f, 1.0f / 3.0f, 0.5f}) {
+    INFO("outer third " << a);
+    const auto slope = [a](double u) {
+      constexpr double h = 1e-3;
+      return (glsl::chordMatterShare(static_cast<float>(u + h), a) - glsl::chordMatterShare(static_cast<float>(u - h), a)) /
+             (2.0 * h);
+    };
+    const double slopes[] = {slope(-0.1), slope(1.0 / 6.0), slope(0.5), slope(5.0 / 6.0), slope(1.1)};
+    const glm::vec4 steps = glsl::chordMatterSlopeSteps(a);
+    for (int q = 0; q < 4; ++q) CHECK(steps[q] == Approx(slopes[q + 1] - slopes[q]).margin(2e-3));
+  }
 
   // the mean scattering point: the e^{−τ(t − first)/(last − first)}-weighted mean of t over the
   // matter [first, last] (midpoint rule), for transparent to opaque chords

@@ -38,6 +38,29 @@ std::vector<scene::Particle> fourParticlesAcross(const glm::vec3& sun) {
   return particles;
 }
 
+// The sun volume of fourParticlesAcross under the sun direction (0.3, 0.9, −0.2), visited at
+// every node within `radius` (particle space) of a particle's centre: visit(reference particle,
+// the particles, σ, the grid's unit sun direction, the node's world point, the volume's τ there).
+template <class Visit>
+void visitNodesInsideFourParticles(float radius, Visit visit) {
+  SunVolumeRig rig;
+  render::RenderSettings rs;
+  rs.view.lighting.sunDirection = glm::normalize(glm::vec3(0.3f, 0.9f, -0.2f));
+  const std::vector<scene::Particle> particles = fourParticlesAcross(rs.view.lighting.sunDirection);
+  const render::Renderer::SunVolumeSnapshot v = rig.renderer->sunVolume(particles, rs);
+  const render::SunVolumeGrid& g = v.grid;
+  REQUIRE(g.cascades == 1);
+  const double sigma = rig.medium.unitOpticalRadius();
+  for (int k = 0; k < g.dims.z; ++k)
+    for (int j = 0; j < g.dims.y; ++j)
+      for (int i = 0; i < g.dims.x; ++i) {
+        const glm::vec3 x = glm::vec3(g.toWorld[0] * glm::vec4(i, j, k, 1.0f));
+        bool inside = false;
+        for (const scene::Particle& p : particles) inside = inside || glm::length(p.toParticle() * (x - p.center)) < radius;
+        if (inside) visit(rig.ref, particles, sigma, g.sun, x, v.tau[(static_cast<std::size_t>(k) * g.dims.y + j) * g.dims.x + i]);
+      }
+}
+
 }  // namespace
 
 TEST_CASE("sun volume: optical depth toward the sun matches the density integrated along the sun rays",
@@ -165,31 +188,17 @@ TEST_CASE("sun volume: past a particle's last matter its whole chord lies toward
   // edge, the density integrated from the node away from the sun is zero: all the chord's
   // matter lies toward the sun, so the volume must hold the whole chord there. (The ramp used to
   // run on to the edge, short of the chord there by up to the outskirts' share of it.)
-  SunVolumeRig rig;
-  render::RenderSettings rs;
-  rs.view.lighting.sunDirection = glm::normalize(glm::vec3(0.3f, 0.9f, -0.2f));
-  const std::vector<scene::Particle> particles = fourParticlesAcross(rs.view.lighting.sunDirection);
-  const render::Renderer::SunVolumeSnapshot v = rig.renderer->sunVolume(particles, rs);
-  const render::SunVolumeGrid& g = v.grid;
-  REQUIRE(g.cascades == 1);
-  const double sigma = rig.medium.unitOpticalRadius();
   int compared = 0, within = 0;
   double worst = 0;
-  for (int k = 0; k < g.dims.z; ++k)
-    for (int j = 0; j < g.dims.y; ++j)
-      for (int i = 0; i < g.dims.x; ++i) {
-        const glm::vec3 x = glm::vec3(g.toWorld[0] * glm::vec4(i, j, k, 1.0f));
-        bool inside = false;
-        for (const scene::Particle& p : particles) inside = inside || glm::length(p.toParticle() * (x - p.center)) < 0.98f;
-        if (!inside) continue;
-        if (integratedSunDepth(particles, rig.ref, sigma, x, -g.sun) > 1e-3) continue;  // matter away from the sun
-        const double expected = integratedSunDepth(particles, rig.ref, sigma, x, g.sun);
-        if (expected < 0.5) continue;  // a chord with matter enough to tell
-        const double got = v.tau[(static_cast<std::size_t>(k) * g.dims.y + j) * g.dims.x + i];
-        ++compared;
-        if (std::abs(got - expected) <= 0.03 * expected + 0.05) ++within;
-        worst = std::max(worst, std::abs(got - expected) / expected);
-      }
+  visitNodesInsideFourParticles(0.98f, [&](const ReferenceParticle& ref, const std::vector<scene::Particle>& particles,
+                                           double sigma, const glm::vec3& sun, const glm::vec3& x, double got) {
+    if (integratedSunDepth(particles, ref, sigma, x, -sun) > 1e-3) return;  // matter away from the sun
+    const double expected = integratedSunDepth(particles, ref, sigma, x, sun);
+    if (expected < 0.5) return;  // a chord with matter enough to tell
+    ++compared;
+    if (std::abs(got - expected) <= 0.03 * expected + 0.05) ++within;
+    worst = std::max(worst, std::abs(got - expected) / expected);
+  });
   INFO("nodes past the last matter " << compared << ", within 3% + 0.05: " << within << ", worst relative " << worst);
   REQUIRE(compared > 50);
   CHECK(within >= 0.95 * compared);
@@ -202,31 +211,17 @@ TEST_CASE("sun volume: inside a particle the volume lays the chord's matter wher
   // is densest at its centre (the metaball fall-off, core/ReferenceParticle.h); a chord laid
   // evenly from its first matter to its last puts too much of it near its ends (relative RMS
   // error 10.1% here), laid by the table's chord_outer_third_share (chordMatterShare) 6.1%.
-  SunVolumeRig rig;
-  render::RenderSettings rs;
-  rs.view.lighting.sunDirection = glm::normalize(glm::vec3(0.3f, 0.9f, -0.2f));
-  const std::vector<scene::Particle> particles = fourParticlesAcross(rs.view.lighting.sunDirection);
-  const render::Renderer::SunVolumeSnapshot v = rig.renderer->sunVolume(particles, rs);
-  const render::SunVolumeGrid& g = v.grid;
-  REQUIRE(g.cascades == 1);
-  const double sigma = rig.medium.unitOpticalRadius();
   int compared = 0;
   double squared = 0, reference = 0;
-  for (int k = 0; k < g.dims.z; ++k)
-    for (int j = 0; j < g.dims.y; ++j)
-      for (int i = 0; i < g.dims.x; ++i) {
-        const glm::vec3 x = glm::vec3(g.toWorld[0] * glm::vec4(i, j, k, 1.0f));
-        bool inside = false;
-        for (const scene::Particle& p : particles) inside = inside || glm::length(p.toParticle() * (x - p.center)) < 0.9f;
-        if (!inside) continue;
-        const double expected = integratedSunDepth(particles, rig.ref, sigma, x, g.sun);
-        const double away = integratedSunDepth(particles, rig.ref, sigma, x, -g.sun);
-        if (expected < 0.5 || away < 0.5) continue;  // within the chord's matter
-        const double got = v.tau[(static_cast<std::size_t>(k) * g.dims.y + j) * g.dims.x + i];
-        ++compared;
-        squared += (got - expected) * (got - expected);
-        reference += expected * expected;
-      }
+  visitNodesInsideFourParticles(0.9f, [&](const ReferenceParticle& ref, const std::vector<scene::Particle>& particles,
+                                          double sigma, const glm::vec3& sun, const glm::vec3& x, double got) {
+    const double expected = integratedSunDepth(particles, ref, sigma, x, sun);
+    const double away = integratedSunDepth(particles, ref, sigma, x, -sun);
+    if (expected < 0.5 || away < 0.5) return;  // within the chord's matter
+    ++compared;
+    squared += (got - expected) * (got - expected);
+    reference += expected * expected;
+  });
   const double relative = std::sqrt(squared / std::max(reference, 1e-30));
   INFO("nodes inside the chords' matter " << compared << ", relative RMS error " << relative);
   REQUIRE(compared > 200);

@@ -171,6 +171,15 @@ CLOUDLUT_FN float chordMatterShare(float u, float outerThird) {
   return outerThird * (min(t, 1.0f) + max(t - 2.0f, 0.0f)) + (1.0f - 2.0f * outerThird) * clamp(t - 1.0f, 0.0f, 1.0f);
 }
 
+// The steps of chordMatterShare's slope d share/du (dimensionless) at the four ends of its
+// thirds, u = 0, 1/3, 2/3 and 1, rising from 0 and back to it: 3a, 3(1 − 2a) − 3a, 3a − 3(1 − 2a)
+// and −3a (a = outerThird). They sum to 0. The sun volume's splat writes a chord's ramp as these
+// steps (sun_volume_build.comp.glsl, addRamp).
+CLOUDLUT_FN vec4 chordMatterSlopeSteps(float outerThird) {
+  float a = outerThird;
+  return vec4(3.0f * a, 3.0f * (1.0f - 3.0f * a), -3.0f * (1.0f - 3.0f * a), -3.0f * a);
+}
+
 // A particle's own optical depth toward the sun (dimensionless) at the point a share s of the
 // way along its sun chord, counted from the chord's sunward end: the chord's optical depth
 // tauChord laid from its first matter to its last matter (shares of the chord, the

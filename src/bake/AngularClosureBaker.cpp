@@ -12,7 +12,6 @@
 #include "core/Glsl.h"
 #include "core/LastMatter.h"
 #include "core/OwnSunDepth.h"
-#include "core/ParameterRules.h"
 #include "core/PhaseSampling.h"
 #include "core/TableLookup.h"
 
@@ -145,9 +144,12 @@ std::optional<AngularClosure> computeAngularClosure(const Table4D& od, const Tab
       s.photonsPerDirection < 1 || s.viewDirections < 1 || s.discSide < 1 || !(s.log2RhoStep > 0.0f) ||
       !(s.ownCoreShadowMax >= 1.0f && s.ownCoreShadowMax <= kMaxOwnCoreShadowMax))
     throw std::invalid_argument("angular closure: settings out of range");
-  const float outerThird = chordOuterThird(od);  // how the sun volume lays the own chord
-  if (const std::string problem = rules::chordOuterThirdProblem(outerThird); !problem.empty())
-    throw std::invalid_argument("angular closure: optical_depth's chord_outer_third_share " + problem);
+  float outerThird = 0.0f;  // how the sun volume lays the own chord
+  try {
+    outerThird = chordOuterThird(od);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("angular closure: optical_depth's ") + e.what());
+  }
   const double sigma = unitOpticalRadius(od);
   const float g = phaseMeanCosine(later);
   const long long maxOrder = maxOrderOf(multiple);

@@ -7,6 +7,7 @@
 
 #include "core/Defaults.h"
 #include "core/Glsl.h"
+#include "core/ParameterRules.h"
 
 namespace cloudlut {
 
@@ -21,7 +22,10 @@ float chordOuterThird(const Table4D& opticalDepth) {
   const auto& p = opticalDepth.parameters();
   const auto it = p.find("chord_outer_third_share");
   if (it == p.end()) return 1.0f / 3.0f;
-  return it->is_number() ? it->get<float>() : std::numeric_limits<float>::quiet_NaN();
+  const double share = it->is_number() ? it->get<double>() : std::numeric_limits<double>::quiet_NaN();
+  if (const std::string problem = rules::chordOuterThirdProblem(share); !problem.empty())
+    throw std::invalid_argument("chord_outer_third_share " + problem);
+  return static_cast<float>(share);
 }
 
 OpticalDepthSample lookupOpticalDepth(const Table4D& table, const glm::vec3& S,

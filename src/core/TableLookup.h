@@ -62,8 +62,8 @@ float unitOpticalRadius(const Table4D& table);
 // The optical-depth table's chord_outer_third_share (dimensionless; bake/ChordMatterProfile.h):
 // the share of a chord's optical depth in each outer third of its matter, as the renderer's
 // volumes lay it (chordMatterShare). 1/3, matter laid evenly, for a table that records none
-// (baked before it was measured); NaN when it is not a number (callers reject it, naming the
-// field: ShadingTables).
+// (baked before it was measured). Throws std::invalid_argument ("chord_outer_third_share …")
+// when it is not a number in [0, 0.5] (rules::chordOuterThirdProblem).
 float chordOuterThird(const Table4D& opticalDepth);
 
 }  // namespace cloudlut

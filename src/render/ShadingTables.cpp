@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "core/Errors.h"
 #include "core/Defaults.h"
-#include "core/ParameterRules.h"
 #include "core/Phase.h"
 #include "core/TableLookup.h"
 #include "render/LastMatterTexture.h"
@@ -49,9 +50,11 @@ ShadingTables::ShadingTables(const GlFunctions& gl, const GlContext& context, co
   referenceRadius_ = static_cast<float>(od.parameters().value("radius_m", defaults::kParticleRadiusMetres));
   if (!(referenceRadius_ > 0.0f) || !std::isfinite(referenceRadius_))
     throw FileError(luts_, "optical_depth: radius_m is not a positive number");
-  chordOuterThird_ = chordOuterThird(od);
-  if (const std::string problem = rules::chordOuterThirdProblem(chordOuterThird_); !problem.empty())
-    throw FileError(luts_, "optical_depth: chord_outer_third_share " + problem);
+  try {
+    chordOuterThird_ = chordOuterThird(od);
+  } catch (const std::invalid_argument& e) {
+    throw FileError(luts_, std::string("optical_depth: ") + e.what());
+  }
   // The phases the tables were baked with (FileError naming the field when malformed); a table
   // that records none was baked with the defaults.
   const auto phaseOf = [&](const Table4D& t, const char* key, const Phase& fallback) {

@@ -32,14 +32,6 @@ CLOUDLUT_FN float sunVolumeRampAt(float tauChord, float wFirst, float wFar, floa
   return tauChord * chordMatterShare((wFirst - w) / span, outerThird);
 }
 
-// The ramp's slope steps (per slice, for a chord of τ_c = span = 1) at its first matter, at the
-// ends of its first and second thirds and at its last matter: the slope of chordMatterShare,
-// 3a, 3(1 − 2a), 3a over the thirds (a = outerThird), rising from 0 and back to it.
-CLOUDLUT_FN vec4 sunVolumeRampSteps(float outerThird) {
-  float a = outerThird;
-  return vec4(3.0f * a, 3.0f * (1.0f - 3.0f * a), -3.0f * (1.0f - 3.0f * a), -3.0f * a);
-}
-
 // Weight of the ramp's delta at wEdge carried by integer slice k (linear split between
 // floor(wEdge) and floor(wEdge) + 1): the double prefix sum of these weights times the ramp's
 // slope reproduces max(0, wEdge − k) exactly at every integer k.

@@ -59,11 +59,12 @@ void addStep(int base, float w, ivec2 amounts) {
 }
 
 // Lays one chord's ramp (sunVolumeRampAt) into the column at `base`: a slope step at each end
-// of its thirds (sunVolumeRampSteps), e the ramp's mean slope τ_c/(wFirst − wFar) per slice.
+// of its thirds (chordMatterSlopeSteps, per unit of the span's share u), e the ramp's mean slope
+// τ_c/(wFirst − wFar) per slice.
 // The last slot takes what the others leave, so that the integer steps sum to 0 and the slope
 // past the chord is 0 (no drift of τ down the column, whatever the rounding).
 void addRamp(int base, float wFirst, float wFar, float e) {
-  vec4 steps = e * sunVolumeRampSteps(uChordOuterThird);
+  vec4 steps = e * chordMatterSlopeSteps(uChordOuterThird);
   float third = (wFirst - wFar) / 3.0;
   vec4 w = vec4(wFirst, wFirst - third, wFar + third, wFar);
   int sum = 0;
