@@ -1,11 +1,13 @@
 #include "render/ParticlePass.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "render/DiffusionVolume.h"
+#include "render/ShaderSources.h"
 #include "render/SunVolume.h"
 #include "render/VolumeResolve.h"
 
@@ -25,23 +27,34 @@ constexpr int kSunVolumeUnit = 3;      // texture unit after the three tables (S
 constexpr int kZenithVolumeUnit = 4;
 constexpr int kDiffusionUnit = 5;
 
+// The particle program's configuration (particle.frag.glsl, particle_detail.glsl): what the
+// settings and the frame's volumes ask of the shader, as #defines.
+std::string configurationDefines(const RenderSettings& s, bool volume, bool sunBuilt, bool chordMap) {
+  return glslDefine("PARTICLE_TERMS", s.terms) + glslDefine("PARTICLE_VOLUME", volume ? 1 : 0) +
+         glslDefine("PARTICLE_LIGHTING", s.lighting == LightingModel::Cloud ? 1 : 0) +
+         glslDefine("PARTICLE_SUNLIGHT_VOLUME", sunBuilt && s.occlusion && s.sunlight == SunlightModel::Volume ? 1 : 0) +
+         glslDefine("PARTICLE_DETAIL_NOISE", s.detail.enabled() ? 1 : 0) + SunVolume::samplingDefines(chordMap);
+}
+
 }  // namespace
 
 ParticlePass::ParticlePass(const GlFunctions& gl, const GlContext& context, const io::LutSet& luts,
                            ParticleBuffers& buffers)
     : gl_(gl), buffers_(buffers), tables_(gl, context, luts) {
-  program_ = linkProgram(gl, true);
+  // the default configuration's program now, so that a GL that cannot build it fails here
+  programFor(configurationDefines(RenderSettings{}, true, true, true));
   gl_.GenVertexArrays(1, &vao_);
 }
 
 ParticlePass::~ParticlePass() { gl_.DeleteVertexArrays(1, &vao_); }
 
-GlProgram ParticlePass::linkProgram(const GlFunctions& gl, bool chordMap) {
-  GlProgram program = linkDrawProgram(gl, kVertexFiles, kFragmentFiles,
-                                      VolumeResolve::fragmentDefines() + SunVolume::samplingDefines(chordMap),
-                                      "particle");
-  requireParticleRecordLayout(gl, program.id(), "particle program");
-  return program;
+const GlProgram& ParticlePass::programFor(const std::string& defines) {
+  const auto found = programs_.find(defines);
+  if (found != programs_.end()) return found->second;
+  GlProgram program =
+      linkDrawProgram(gl_, kVertexFiles, kFragmentFiles, VolumeResolve::fragmentDefines() + defines, "particle");
+  requireParticleRecordLayout(gl_, program.id(), "particle program");
+  return programs_.emplace(defines, std::move(program)).first->second;
 }
 
 void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
@@ -58,8 +71,7 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
 
   // the chord map when it holds every chord (or when no volume was built: it is not read then)
   const bool fromMap = s.sunChordMap && (!sunBuilt || sun.chordMapComplete());
-  if (!fromMap && computedChordsProgram_.id() == 0) computedChordsProgram_ = linkProgram(gl_, false);
-  const GlProgram& program = fromMap ? program_ : computedChordsProgram_;
+  const GlProgram& program = programFor(configurationDefines(s, volume, sunBuilt, fromMap));
   gl_.UseProgram(program.id());
   const ProgramUniforms uniforms(gl_, program.id());
   const scene::CameraFrame frame(s.view.camera, width, height);
@@ -73,15 +85,11 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   uniforms.set("uSunColor", light.sunColor);
   uniforms.set("uSkyColor", light.skyColor);
   uniforms.set("uSkyBelowColor", light.skyColor * light.skyBelow);
-  uniforms.set("uTerms", static_cast<GLint>(s.terms));
   tables_.bind(uniforms);
   uniforms.set("uMinOpacityForDistance", kMinOpacityForDistance);
   uniforms.set("uNoDistance", kNoDistance);
   uniforms.set("uUseOrder", useOrder ? 1 : 0);
-  uniforms.set("uVolume", volume ? 1 : 0);
-  uniforms.set("uLighting", s.lighting == LightingModel::Cloud ? 1 : 0);
   uniforms.set("uDetailNoise", s.detail.packed());
-  uniforms.set("uSunlightVolume", sunBuilt && s.occlusion && s.sunlight == SunlightModel::Volume ? 1 : 0);
   sun.bind(uniforms, kSunVolumeUnit);
   sun.bindChordMap();
   if (!sunBuilt) uniforms.set("uSunCascades", 0);

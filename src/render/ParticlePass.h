@@ -8,6 +8,8 @@
 // mode each segment goes to its pixel's fragment list instead (render/VolumeResolve.h), and only
 // the fragments that found no room are blended.
 #include <cstddef>
+#include <map>
+#include <string>
 
 #include "io/LutIo.h"
 #include "render/GlContext.h"
@@ -48,14 +50,15 @@ class ParticlePass {
             bool zenithBuilt, const DiffusionVolume& diffusion);
 
  private:
-  // The particle program, reading the chord map (chordMap) or computing the chords.
-  static GlProgram linkProgram(const GlFunctions& gl, bool chordMap);
+  // The particle program compiled for one configuration (particle.frag.glsl's PARTICLE_*
+  // #defines, e.g. "PARTICLE_LIGHTING 1"; SUN_CHORD_MAP 1 to read the sun volume's chord map,
+  // 0 to compute the chords), linked when first asked for and kept.
+  const GlProgram& programFor(const std::string& defines);
 
   const GlFunctions& gl_;
   ParticleBuffers& buffers_;
   ShadingTables tables_;
-  GlProgram program_;                // reads the sun volume's chord map (SunVolume::chordMapComplete)
-  GlProgram computedChordsProgram_;  // computes the chords again; linked when first needed
+  std::map<std::string, GlProgram> programs_;  // by their #defines
   GLuint vao_ = 0;
 };
 

@@ -3,12 +3,18 @@
 // cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl,
 // volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl, sun_chord_map.glsl,
 // sun_volume_sampling.glsl, zenith_volume_sampling.glsl and diffusion_sampling.glsl.
-// Two lighting models (render/RenderTypes.h, docs/LIGHTING.md): the seed's (uLighting 0) and the
-// cloud model (uLighting 1), whose equations are cloudlut_shading.glsl's.
+// Two lighting models (render/RenderTypes.h, docs/LIGHTING.md): the seed's (kLighting 0) and the
+// cloud model (kLighting 1), whose equations are cloudlut_shading.glsl's.
+//
+// The configuration is compiled in, not passed as uniforms (ParticlePass::programFor injects the
+// PARTICLE_* #defines): llvmpipe runs the code of a branch that no fragment takes for every
+// fragment all the same, so a branch on a uniform costs what its code costs, and constants let
+// the compiler drop what the configuration does not use (docs/BENCHMARKS.md, "Where a
+// fragment's time goes").
 //
 // Output 0 (RGBA32F, blended ONE/SRC_ALPHA for colour, ZERO/SRC_ALPHA for alpha):
 //   rgb = radiance scattered toward the camera, a = transmittance of the particle (alpha mode;
-//   in volume mode the segment goes to the pixel's fragment list instead, see uVolume);
+//   in volume mode the segment goes to the pixel's fragment list instead, see kVolume);
 // output 1 (R32F, blended with MIN): distance from the eye to the particle's first matter.
 
 uniform vec3 uEye;
@@ -16,7 +22,7 @@ uniform vec3 uSunDirection;  // world, unit, toward the sun
 uniform vec3 uSunColor;
 uniform vec3 uSkyColor;       // sky radiance above the horizon (and the seed's ambient)
 uniform vec3 uSkyBelowColor;  // sky radiance below the horizon, the ground's return (cloud lighting)
-uniform int uTerms;          // bit 0 single, bit 1 multiple, bit 2 ambient
+const int kTerms = PARTICLE_TERMS;  // bit 0 single, bit 1 multiple, bit 2 ambient
 
 uniform sampler3D uOpticalDepth;
 uniform sampler3D uSingle;
@@ -31,9 +37,9 @@ uniform int uFirstPhaseKind;         // phaseFunction() kind and parameter of th
 uniform float uFirstPhaseParam;
 uniform float uMinOpacityForDistance;
 uniform float uNoDistance;
-uniform int uVolume;  // 1: volume-aware blending (store the segment in the pixel's list)
-uniform int uLighting;         // 0 seed (§4.4, §5.3), 1 cloud
-uniform int uSunlightVolume;   // 1: sunlight per shading point from the sun volume, 0: per particle
+const int kVolume = PARTICLE_VOLUME;  // 1: volume-aware blending (the segment goes to the pixel's list)
+const int kLighting = PARTICLE_LIGHTING;  // 0 seed (§4.4, §5.3), 1 cloud
+const int kSunlightVolume = PARTICLE_SUNLIGHT_VOLUME;  // 1: sunlight per shading point (sun volume), 0: per particle
 uniform float uLaterAsymmetry; // mean cosine of the later phase function (diffuseTransmittance)
 uniform float uDiffusionShare; // share of the multiple light from the diffusion volume where it has a field
 uniform float uDiffusionGain;  // the diffusion's calibration (RenderSettings::diffusionGain)
@@ -134,20 +140,22 @@ void main() {
   // Sunlight reaching the particle: per particle from the occlusion pass (seed §5.3), or at the
   // mean scattering point from the sun volume, less the particle's own chord there.
   float sunlight = p.toParticle[2].w;
-  vec4 sunTau = sunOpticalDepths(xMean, vParticle, p.centerDensity.xyz, toParticle, rho, uOpticalDepth,
-                                 uOpticalDepthDims, uUnitOpticalRadius);
-  float tauOutside = uSunlightVolume != 0 ? sunTau.x : 0.0;
-  if (uSunlightVolume != 0) sunlight = exp(-tauOutside);
+  vec4 sunTau = vec4(0.0);  // read only where the configuration uses it
+  if (kLighting != 0 || kSunlightVolume != 0)
+    sunTau = sunOpticalDepths(xMean, vParticle, p.centerDensity.xyz, toParticle, rho, uOpticalDepth,
+                              uOpticalDepthDims, uUnitOpticalRadius);
+  float tauOutside = kSunlightVolume != 0 ? sunTau.x : 0.0;
+  if (kSunlightVolume != 0) sunlight = exp(-tauOutside);
 
   // Single scattering: the mean source of the homogeneous sphere of the ray's mean density
   // (cloud model with the sun volume: or the particle's own sun transmittance at the mean
   // scattering point, whichever is larger, singleSunTransmittance), times the phase function of
   // the physical (world-space) scattering angle, times the ray's own opacity 1 − e^{−τ}.
   float single = 0.0;
-  if ((uTerms & 1) != 0) {
+  if ((kTerms & 1) != 0) {
     vec4 x = scatteringAxes(S, v, l, rho * od.x, uSingleAxes, float(uSingleDims.w));
     float source = singleSourceFromTable(cloudlutSample4D(uSingle, x, uSingleDims).x);
-    if (uLighting != 0 && uSunlightVolume != 0) source = singleSunTransmittance(source, sunTau.y - sunTau.x);
+    if (kLighting != 0 && kSunlightVolume != 0) source = singleSunTransmittance(source, sunTau.y - sunTau.x);
     single = phaseFunction(uFirstPhaseKind, dot(dir, uSunDirection), uFirstPhaseParam) * chordOpacity(tau) * source;
   }
   // Multiple scattering, per unit sun irradiance, already lit (the sunlight factor included).
@@ -160,8 +168,8 @@ void main() {
   //          through the cloud beyond it, by the share of the local column that is not the
   //          particle's own.
   float multiple = 0.0;
-  if ((uTerms & 2) != 0) {
-    if (uLighting == 0) {
+  if ((kTerms & 2) != 0) {
+    if (kLighting == 0) {
       vec4 x = scatteringAxes(S, v, l, rho, uMultipleAxes, float(uMultipleDims.w));
       multiple = sunlight * multipleScatteringFromTable(cloudlutSample4D(uMultiple, x, uMultipleDims).x, tau);
     } else {
@@ -173,7 +181,7 @@ void main() {
       // darkened where the particle's core shadows x̄ more than the table's sphere would, and
       // brightened (by at most uOwnCoreShadowMax) where less (ownCoreShadow; only with a closure
       // baked for it, uAngularClosureDims.z)
-      if (uSunlightVolume != 0 && uAngularClosureDims.z != 0)
+      if (kSunlightVolume != 0 && uAngularClosureDims.z != 0)
         own *= ownCoreShadow(sunTau.y - sunTau.x,
                              homogeneousOwnSunDepth(toParticle * (xMean - p.centerDensity.xyz), l, rho * od.x,
                                                     uUnitOpticalRadius),
@@ -212,8 +220,8 @@ void main() {
   // above the horizon and uSkyBelowColor below it, from the cloud's vertical optical depths there
   // (the zenith volume; layeredSkyAmbient, = uniformSkyAmbient · sky when the two are equal).
   vec3 ambient = vec3(0.0);
-  if ((uTerms & 4) != 0) {
-    if (uLighting == 0) {
+  if ((kTerms & 4) != 0) {
+    if (kLighting == 0) {
       ambient = uSkyColor * ambientScale(transmittance, od.y);
     } else {
       vec2 vertical = zenithOpticalDepths(xMean);
@@ -224,7 +232,7 @@ void main() {
 
   vec3 radiance = uSunColor * (sunlight * single + multiple) + ambient;
   oColor = vec4(radiance, transmittance);
-  if (uVolume != 0) {
+  if (kVolume != 0) {
     uint node = atomicAdd(fragCount, 1u);
     if (node < fragCapacity) {
       uint next = imageAtomicExchange(uHeads, ivec2(gl_FragCoord.xy), node);

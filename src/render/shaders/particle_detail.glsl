@@ -1,7 +1,12 @@
 // particle_detail.glsl — the detail noise of the particle pass (seed §5.4). Preceded by
 // cloudlut_detail_noise.glsl (lut_formats/glsl, the definition the path tracer shares); used by
 // particle.frag.glsl.
-uniform vec4 uDetailNoise;  // (amplitude, 1 / feature size [world units⁻¹], seed, 0); all 0: off
+// particle.frag.glsl compiled without the detail (PARTICLE_DETAIL_NOISE 0) leaves out its code.
+#if PARTICLE_DETAIL_NOISE
+uniform vec4 uDetailNoise;  // (amplitude, 1 / feature size [world units⁻¹], seed, 0)
+#else
+const vec4 uDetailNoise = vec4(0.0);  // off
+#endif
 
 // The factor of the optical depth of the visible chord [tNear, tExit] (world distances along the
 // unit direction dir from eye): the mean of the density factor 1 + a·n(x/s) along it
