@@ -114,10 +114,11 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
       dispatch(d);
     }
     const glm::ivec3 d = use(1, l);
+    const glm::ivec3 half((d.x + 1) / 2, d.y, d.z);  // a colour's nodes: every other one along x
     for (int i = 0; i < sweeps << l; ++i)
       for (int colour = 0; colour < 2; ++colour) {
         gl_.Uniform1i(stages_[1].uniform("uColour"), colour);
-        dispatch(d);
+        dispatch(half);
       }
   }
   const glm::ivec3 d = use(2, 0);

@@ -7,7 +7,8 @@
 // fluence per W/m² of irradiance), q its source per world unit.
 //   STAGE 0  per node: σ* (δ-Eddington scaled extinction) and q, the scaled beam's loss across
 //            the node's cell; the field starts at φ = 0 with D = 1/(3σ*(1 − g*) + 1/h).
-//   STAGE 1  half a sweep (the nodes of one colour, red-black) of successive over-relaxation of
+//   STAGE 1  half a sweep (the nodes of one colour, red-black; one lane per node of that colour) of
+//            successive over-relaxation of
 //            −∇·(D∇φ) = q (7-point, harmonic mean of D across each face, Marshak's vacuum
 //            condition on the grid's faces, marshakExitCoefficient), in place; D from the field
 //            by Wilson's flux limiter (diffusionCoefficient).
@@ -52,6 +53,11 @@ void startField(ivec3 n, float sigmaStar, float gStar, float hMin) {
 
 void main() {
   ivec3 n = ivec3(gl_GlobalInvocationID);
+#if STAGE == 1
+  // red-black: the dispatch covers half the nodes along x, those of colour uColour, (i + j + k)
+  // mod 2 = uColour; a lane per node of the other colour would run masked and cost the same
+  n.x = 2 * n.x + ((n.y + n.z + uColour) & 1);
+#endif
   if (outside(n)) return;
   float f = deltaEddingtonForwardShare(uLaterAsymmetry);
   float gStar = deltaEddingtonAsymmetry(uLaterAsymmetry);
@@ -89,9 +95,6 @@ void main() {
   vec3 g = min(vec3(n) * 0.5, vec3(uCoarseNodes) - 1.0);
   imageStore(uField, n, vec4(texture(uCoarseField, (g + 0.5) / vec3(uCoarseNodes)).xy, 0.0, 0.0));
 #else
-#if STAGE == 1
-  if (((n.x + n.y + n.z) & 1) != uColour) return;  // red-black: this sweep updates one colour
-#endif
   vec2 medium = imageLoad(uMedium, n).xy;
   vec2 c = imageLoad(uField, n).xy;
   float diagonal = 0.0, sum = medium.y;
