@@ -23,11 +23,22 @@ constexpr unsigned kGroup = 4;  // the shader's local size per axis
 // 800 sweeps what plain Gauss-Seidel had not in 1600 (docs/LIGHTING.md).
 constexpr float kOverRelaxation = 1.8f;
 constexpr int kCoarseUnit = 2;  // texture unit of the coarser level's field (prolongation)
+// STAGE 5 (the coarsest level's sweeps in one work group of kWholeGroup invocations) for a level
+// of at most kOneGroupNodes nodes: llvmpipe runs a work group on one core, which beats a dispatch
+// per half-sweep on both cores only while the half-sweep is small. And while each invocation's
+// loops stay under llvmpipe's 65535 passes in all (render/VolumeResolve.h), with a margin.
+constexpr int kWholeGroup = 256;
+constexpr long kOneGroupNodes = 4096;
+bool inOneGroup(const glm::ivec3& nodes, int sweeps) {
+  const long count = static_cast<long>((nodes.x + 1) / 2) * nodes.y * nodes.z;
+  const long passes = 2L * sweeps * ((count + kWholeGroup - 1) / kWholeGroup + 1);
+  return static_cast<long>(nodes.x) * nodes.y * nodes.z <= kOneGroupNodes && passes < 50000;
+}
 
 }  // namespace
 
 DiffusionVolume::DiffusionVolume(const GlFunctions& gl, const GlContext& context) : gl_(gl), context_(context) {
-  for (int stage = 0; stage < 5; ++stage)
+  for (int stage = 0; stage < kStages; ++stage)
     stages_[stage] = linkComputeProgram(gl, filesFor("diffusion_volume.comp.glsl"),
                                         glslDefine("STAGE", stage) + SunVolume::samplingDefines());
   beside_.program = linkComputeProgram(gl, filesFor("diffusion_beside.comp.glsl"), SunVolume::samplingDefines());
@@ -113,9 +124,16 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
       ProgramUniforms(gl_, stages_[4].id()).set("uCoarseField", kCoarseUnit);
       dispatch(d);
     }
+    const int levelSweeps = sweeps << l;
+    if (l == levelCount_ - 1 && inOneGroup(levels_[l].nodes, levelSweeps)) {
+      use(5, l);
+      gl_.Uniform1i(stages_[5].uniform("uSweeps"), levelSweeps);
+      dispatch(glm::ivec3(1));
+      continue;
+    }
     const glm::ivec3 d = use(1, l);
     const glm::ivec3 half((d.x + 1) / 2, d.y, d.z);  // a colour's nodes: every other one along x
-    for (int i = 0; i < sweeps << l; ++i)
+    for (int i = 0; i < levelSweeps; ++i)
       for (int colour = 0; colour < 2; ++colour) {
         gl_.Uniform1i(stages_[1].uniform("uColour"), colour);
         dispatch(half);

@@ -16,12 +16,20 @@
 //   STAGE 3  one level coarser (coarse node I at fine node 2I, spacing doubled): σ* and q as the
 //            full-weighting average of the fine nodes around, the field started as in STAGE 0.
 //   STAGE 4  the coarse level's solution, trilinear, as the start of the finer level's sweeps.
+//   STAGE 5  all the sweeps of STAGE 1 on a small level in one work group, a barrier between
+//            the half-sweeps: the same updates in the same order, without a dispatch each
+//            (llvmpipe pays about 40 µs a dispatch, more than a coarse level's half-sweep).
 // After the solve, diffusion_beside.comp.glsl weighs the cloud beside the nodes for the particle
 // shader's share.
 // The solve runs coarse to fine (render/DiffusionVolume.cpp): the coarsest level's sweeps carry
 // the light across the cloud, each finer level's only the detail.
 
+#if STAGE == 5
+const int kWholeGroup = 256;
+layout(local_size_x = kWholeGroup) in;
+#else
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#endif
 
 uniform sampler3D uColumnTau;  // the vertical volume's τ, one cascade (texel = node)
 uniform ivec3 uNodes;          // nodes per grid axis
@@ -31,9 +39,14 @@ uniform vec3 uSpacing;         // world distance between neighbouring nodes alon
 uniform float uLaterAsymmetry; // g of the later phase function
 uniform int uColour;            // STAGE 1: the nodes (i + j + k) mod 2 = uColour are updated
 uniform float uOverRelaxation;  // STAGE 1: successive over-relaxation factor ω in [1, 2)
+uniform int uSweeps;            // STAGE 5: the sweeps (each two half-sweeps)
 
 layout(rg32f, binding = 0) uniform image3D uMedium;  // σ*, q
+#if STAGE == 5
+layout(rg32f, binding = 1) coherent uniform image3D uField;  // φ, D: read by the group's other invocations
+#else
 layout(rg32f, binding = 1) uniform image3D uField;   // φ, D
+#endif
 layout(rg32f, binding = 2) uniform image3D uFineMedium;  // STAGE 3: the finer level's σ*, q
 layout(rgba32f, binding = 3) uniform image3D uFlux;   // φ, J (STAGE 2)
 uniform ivec3 uFineNodes;       // STAGE 3: the finer level's nodes
@@ -51,6 +64,69 @@ void startField(ivec3 n, float sigmaStar, float gStar, float hMin) {
   imageStore(uField, n, vec4(0.0, diffusionCoefficient(sigmaStar * (1.0 - gStar), 1.0 / hMin), 0.0, 0.0));
 }
 
+#if STAGE == 1 || STAGE == 2 || STAGE == 5
+// At node n: one red-black over-relaxed update of φ and D (STAGE 1 and 5), or φ and the flux
+// J (STAGE 2), from the six neighbours.
+void updateNode(ivec3 n, float gStar, float hMin) {
+  vec2 medium = imageLoad(uMedium, n).xy;
+  vec2 c = imageLoad(uField, n).xy;
+  float diagonal = 0.0, sum = medium.y;
+  vec3 gradient = vec3(0.0);  // per grid axis, world units
+  for (int a = 0; a < 3; ++a) {
+    float h = uSpacing[a];
+    float phiSide[2];
+    for (int s = 0; s < 2; ++s) {
+      ivec3 k = n;
+      k[a] += 2 * s - 1;
+      if (outside(k)) {  // the grid's face: Marshak's condition, flux out = marshakExitCoefficient · φ
+        diagonal += marshakExitCoefficient(c.y, h) / h;
+        phiSide[s] = c.x;
+        continue;
+      }
+      vec2 m = imageLoad(uField, k).xy;
+      float face = 2.0 * c.y * m.y / max(c.y + m.y, 1e-30) / (h * h);
+      diagonal += face;
+      sum += face * m.x;
+      phiSide[s] = m.x;
+    }
+    gradient[a] = (phiSide[1] - phiSide[0]) / (2.0 * h);
+  }
+#if STAGE != 2
+  float phi = mix(c.x, sum / max(diagonal, 1e-30), uOverRelaxation);
+  float extent = max(float(uNodes.x) * uSpacing.x, max(float(uNodes.y) * uSpacing.y, float(uNodes.z) * uSpacing.z));
+  // |∇φ|/φ, between 1/(the grid's extent) and 1/h: a node still dark while its neighbours are lit
+  // (the first sweeps) must not take D → 0, and no gradient the grid resolves is steeper
+  float ratio = clamp(length(gradient) / max(c.x, 1e-30), 1.0 / extent, 1.0 / hMin);
+  imageStore(uField, n, vec4(phi, diffusionCoefficient(medium.x * (1.0 - gStar), ratio), 0.0, 0.0));
+#else
+  // grid axes → world: ∇_world φ = Gᵀ ∇_grid φ, G the world → node map's linear part
+  vec3 perNode = gradient * uSpacing;
+  vec3 world = transpose(mat3(uWorldToNode)) * perNode;
+  imageStore(uFlux, n, vec4(c.x, -c.y * world));
+#endif
+}
+#endif
+
+#if STAGE == 5
+// One work group: its invocations take the nodes of one colour in turn (every other one along x,
+// as STAGE 1's dispatch), then wait for each other before the other colour.
+void main() {
+  float gStar = deltaEddingtonAsymmetry(uLaterAsymmetry);
+  float hMin = min(uSpacing.x, min(uSpacing.y, uSpacing.z));
+  int halfX = (uNodes.x + 1) / 2;
+  int count = halfX * uNodes.y * uNodes.z;
+  for (int i = 0; i < 2 * uSweeps; ++i) {
+    int colour = i & 1;
+    for (int k = int(gl_LocalInvocationIndex); k < count; k += kWholeGroup) {
+      ivec3 n = ivec3(k % halfX, (k / halfX) % uNodes.y, k / (halfX * uNodes.y));
+      n.x = 2 * n.x + ((n.y + n.z + colour) & 1);
+      if (!outside(n)) updateNode(n, gStar, hMin);
+    }
+    memoryBarrierImage();
+    barrier();
+  }
+}
+#else
 void main() {
   ivec3 n = ivec3(gl_GlobalInvocationID);
 #if STAGE == 1
@@ -95,41 +171,7 @@ void main() {
   vec3 g = min(vec3(n) * 0.5, vec3(uCoarseNodes) - 1.0);
   imageStore(uField, n, vec4(texture(uCoarseField, (g + 0.5) / vec3(uCoarseNodes)).xy, 0.0, 0.0));
 #else
-  vec2 medium = imageLoad(uMedium, n).xy;
-  vec2 c = imageLoad(uField, n).xy;
-  float diagonal = 0.0, sum = medium.y;
-  vec3 gradient = vec3(0.0);  // per grid axis, world units
-  for (int a = 0; a < 3; ++a) {
-    float h = uSpacing[a];
-    float phiSide[2];
-    for (int s = 0; s < 2; ++s) {
-      ivec3 k = n;
-      k[a] += 2 * s - 1;
-      if (outside(k)) {  // the grid's face: Marshak's condition, flux out = marshakExitCoefficient · φ
-        diagonal += marshakExitCoefficient(c.y, h) / h;
-        phiSide[s] = c.x;
-        continue;
-      }
-      vec2 m = imageLoad(uField, k).xy;
-      float face = 2.0 * c.y * m.y / max(c.y + m.y, 1e-30) / (h * h);
-      diagonal += face;
-      sum += face * m.x;
-      phiSide[s] = m.x;
-    }
-    gradient[a] = (phiSide[1] - phiSide[0]) / (2.0 * h);
-  }
-#if STAGE == 1
-  float phi = mix(c.x, sum / max(diagonal, 1e-30), uOverRelaxation);
-  float extent = max(float(uNodes.x) * uSpacing.x, max(float(uNodes.y) * uSpacing.y, float(uNodes.z) * uSpacing.z));
-  // |∇φ|/φ, between 1/(the grid's extent) and 1/h: a node still dark while its neighbours are lit
-  // (the first sweeps) must not take D → 0, and no gradient the grid resolves is steeper
-  float ratio = clamp(length(gradient) / max(c.x, 1e-30), 1.0 / extent, 1.0 / hMin);
-  imageStore(uField, n, vec4(phi, diffusionCoefficient(medium.x * (1.0 - gStar), ratio), 0.0, 0.0));
-#else
-  // grid axes → world: ∇_world φ = Gᵀ ∇_grid φ, G the world → node map's linear part
-  vec3 perNode = gradient * uSpacing;
-  vec3 world = transpose(mat3(uWorldToNode)) * perNode;
-  imageStore(uFlux, n, vec4(c.x, -c.y * world));
-#endif
+  updateNode(n, gStar, hMin);
 #endif
 }
+#endif

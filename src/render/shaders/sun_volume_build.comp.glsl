@@ -11,7 +11,8 @@
 //   STAGE 2  (before 0, with uMapChords) one invocation per particle: the chords the chord map
 //            needs, so that it can be sized before the splat;
 //   STAGE 1  one invocation per column: the double prefix sum from the sun side, τ at every
-//            slice stored into the volume texture; the deltas are cleared for the next frame.
+//            slice stored into the volume texture (render/SunVolume.cpp clears the deltas before
+//            each splat).
 
 layout(local_size_x = GROUP_SIZE) in;
 
@@ -158,10 +159,8 @@ void main() {
   float slope = 0.0, tau = 0.0;
   for (int m = uDims.z; m >= 1; --m) {
     slope += float(deltas[base + m]) / SUN_FIXED_SCALE;
-    deltas[base + m] = 0;
     tau += slope;
     imageStore(uSunTau, ivec3(i, j, cascade * uDims.z + m - 1), vec4(max(tau, 0.0)));
   }
-  deltas[base] = 0;
 }
 #endif
