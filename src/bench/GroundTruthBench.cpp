@@ -9,7 +9,9 @@
 // without the diffusion volume (docs/LIGHTING.md); "-18" appended: 18-order
 // instead of converged multiple scattering), "raymarch" and
 // "raymarch-adaptive" at several step counts; and the steady-state frame times of
-// bench/FrameTime.h ("frame-lut-volume", "frame-raymarch", at 1280×720). error_mean = RMSE of R, G, B over the cloud
+// bench/FrameTime.h ("frame-lut-volume", "frame-raymarch", at 1280×720), with the accuracy of
+// those frames' renderer at about their size ("frame-lut-volume-accuracy", steps = the particles'
+// downscale; no time). error_mean = RMSE of R, G, B over the cloud
 // pixels, error_p95 = 95th percentile of the per-pixel |error| (mean of the channels),
 // error_max = largest error; the note holds the relative RMSE, the relative RMSE with the
 // reference's noise removed (nc_rel_rmse), the relative bias and SSIM. Times are the
@@ -125,6 +127,27 @@ bool ensureLutSet(const fs::path& dir, const Medium& medium, bool quick, int ord
     fs::remove_all(dir, ec);
     return false;
   }
+}
+
+// The odd factor F that brings `height` rows closest to the frames' 720 from below (at least 1):
+// the centre of an F × F block of sub-pixels is the centre of the pixel it makes.
+int frameSizeFactor(int height) {
+  int f = std::max(1, 720 / std::max(height, 1));
+  return f % 2 == 1 ? f : f - 1;
+}
+
+// The image of the sub-pixels at the centres of the factor × factor blocks of `fine`.
+render::Image blockCentres(const render::Image& fine, int factor) {
+  render::Image out;
+  out.width = fine.width / factor;
+  out.height = fine.height / factor;
+  out.rgba.resize(static_cast<std::size_t>(out.width) * out.height * 4);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      const float* p = fine.pixel(x * factor + factor / 2, y * factor + factor / 2);
+      std::copy(p, p + 4, out.rgba.begin() + 4 * (static_cast<std::ptrdiff_t>(y) * out.width + x));
+    }
+  return out;
 }
 
 struct Errors {
@@ -349,6 +372,24 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
                        ", tables " + lr.luts->tables.at("multiple_scattering").table.name() +
                        (lr.suffix.empty() ? " converged" : " 18 orders") + ", reduced resolution");
           }
+    // The speed goal's reduced resolutions judged against the path tracer: the default renderer
+    // (converged tables) at about the frames' 720 rows, an odd factor F times the reference's
+    // size, the particles at 1/1, 1/2 and 1/4 of it and upscaled; the sub-pixel at the centre of
+    // each F × F block lies on the reference pixel's centre ray, which the path tracer samples.
+    if (!lutRenderers.empty() && lutRenderers.front().suffix.empty())
+      for (const int downscale : {1, 2, 4}) {
+        const int factor = frameSizeFactor(height);
+        render::RenderSettings rs;
+        rs.width = width * factor;
+        rs.height = height * factor;
+        rs.view = view;
+        rs.blend = render::BlendMode::Volume;
+        rs.downscale = downscale;
+        const render::Image frame = lutRenderers.front().renderer->render(scene.particles, rs);
+        addRow("frame-lut-volume-accuracy", downscale, blockCentres(frame, factor), 0.0,
+               "; the default renderer at " + std::to_string(rs.width) + "x" + std::to_string(rs.height) +
+                   ", particles at 1/" + std::to_string(downscale) + ", judged at the reference's pixel centres");
+      }
     for (const bool adaptive : {false, true})
       for (const int n : steps) {
         render::RayMarchSettings rm;
