@@ -124,7 +124,7 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
       ProgramUniforms(gl_, stages_[4].id()).set("uCoarseField", kCoarseUnit);
       dispatch(d);
     }
-    const int levelSweeps = sweeps << l;
+    const int levelSweeps = sweeps;
     if (l == levelCount_ - 1 && inOneGroup(levels_[l].nodes, levelSweeps)) {
       use(5, l);
       gl_.Uniform1i(stages_[5].uniform("uSweeps"), levelSweeps);
