@@ -376,9 +376,9 @@ void benchGroundTruth(BenchReport& report, const BenchOptions& options, const fs
     // (converged tables) at about the frames' 720 rows, an odd factor F times the reference's
     // size, the particles at 1/1, 1/2 and 1/4 of it and upscaled; the sub-pixel at the centre of
     // each F × F block lies on the reference pixel's centre ray, which the path tracer samples.
+    const int factor = frameSizeFactor(height);
     if (!lutRenderers.empty() && lutRenderers.front().suffix.empty())
       for (const int downscale : {1, 2, 4}) {
-        const int factor = frameSizeFactor(height);
         render::RenderSettings rs;
         rs.width = width * factor;
         rs.height = height * factor;

@@ -27,12 +27,13 @@ constexpr int kCoarseUnit = 2;  // texture unit of the coarser level's field (pr
 // of at most kOneGroupNodes nodes: llvmpipe runs a work group on one core, which beats a dispatch
 // per half-sweep on both cores only while the half-sweep is small. And while each invocation's
 // loops stay under llvmpipe's 65535 passes in all (render/VolumeResolve.h), with a margin.
-constexpr int kWholeGroup = 256;
+constexpr int kWholeGroup = 256;  // the shader's WHOLE_GROUP
 constexpr long kOneGroupNodes = 4096;
+constexpr long kLoopPassBudget = 50000;
 bool inOneGroup(const glm::ivec3& nodes, int sweeps) {
   const long count = static_cast<long>((nodes.x + 1) / 2) * nodes.y * nodes.z;
   const long passes = 2L * sweeps * ((count + kWholeGroup - 1) / kWholeGroup + 1);
-  return static_cast<long>(nodes.x) * nodes.y * nodes.z <= kOneGroupNodes && passes < 50000;
+  return static_cast<long>(nodes.x) * nodes.y * nodes.z <= kOneGroupNodes && passes < kLoopPassBudget;
 }
 
 }  // namespace
@@ -40,7 +41,8 @@ bool inOneGroup(const glm::ivec3& nodes, int sweeps) {
 DiffusionVolume::DiffusionVolume(const GlFunctions& gl, const GlContext& context) : gl_(gl), context_(context) {
   for (int stage = 0; stage < kStages; ++stage)
     stages_[stage] = linkComputeProgram(gl, filesFor("diffusion_volume.comp.glsl"),
-                                        glslDefine("STAGE", stage) + SunVolume::samplingDefines());
+                                        glslDefine("STAGE", stage) + glslDefine("WHOLE_GROUP", kWholeGroup) +
+                                            SunVolume::samplingDefines());
   beside_.program = linkComputeProgram(gl, filesFor("diffusion_beside.comp.glsl"), SunVolume::samplingDefines());
 }
 
@@ -124,16 +126,15 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
       ProgramUniforms(gl_, stages_[4].id()).set("uCoarseField", kCoarseUnit);
       dispatch(d);
     }
-    const int levelSweeps = sweeps;
-    if (l == levelCount_ - 1 && inOneGroup(levels_[l].nodes, levelSweeps)) {
+    if (l == levelCount_ - 1 && inOneGroup(levels_[l].nodes, sweeps)) {
       use(5, l);
-      gl_.Uniform1i(stages_[5].uniform("uSweeps"), levelSweeps);
+      gl_.Uniform1i(stages_[5].uniform("uSweeps"), sweeps);
       dispatch(glm::ivec3(1));
       continue;
     }
     const glm::ivec3 d = use(1, l);
     const glm::ivec3 half((d.x + 1) / 2, d.y, d.z);  // a colour's nodes: every other one along x
-    for (int i = 0; i < levelSweeps; ++i)
+    for (int i = 0; i < sweeps; ++i)
       for (int colour = 0; colour < 2; ++colour) {
         gl_.Uniform1i(stages_[1].uniform("uColour"), colour);
         dispatch(half);

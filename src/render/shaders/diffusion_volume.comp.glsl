@@ -25,8 +25,7 @@
 // the light across the cloud, each finer level's only the detail.
 
 #if STAGE == 5
-const int kWholeGroup = 256;
-layout(local_size_x = kWholeGroup) in;
+layout(local_size_x = WHOLE_GROUP) in;  // WHOLE_GROUP: render/DiffusionVolume.cpp's kWholeGroup
 #else
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 #endif
@@ -117,7 +116,7 @@ void main() {
   int count = halfX * uNodes.y * uNodes.z;
   for (int i = 0; i < 2 * uSweeps; ++i) {
     int colour = i & 1;
-    for (int k = int(gl_LocalInvocationIndex); k < count; k += kWholeGroup) {
+    for (int k = int(gl_LocalInvocationIndex); k < count; k += WHOLE_GROUP) {
       ivec3 n = ivec3(k % halfX, (k / halfX) % uNodes.y, k / (halfX * uNodes.y));
       n.x = 2 * n.x + ((n.y + n.z + colour) & 1);
       if (!outside(n)) updateNode(n, gStar, hMin);
