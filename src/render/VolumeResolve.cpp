@@ -16,8 +16,8 @@ namespace {
 constexpr GLuint kPoolBinding = 2, kCutBinding = 3, kPixelListsBinding = 4;
 constexpr unsigned kResolveGroup = 64;  // the resolves' local_size_x
 // PixelLists (volume_fragments.glsl): a count per region and the capacity; then the regions of
-// capacity pixel words: one per sorted resolve, and the chunked resolve's.
-constexpr std::size_t kPixelListRegions = kSortedResolveSlots.size() + 1;
+// capacity pixel words: the listed pixels, one per sorted resolve, and the chunked resolve's.
+constexpr std::size_t kPixelListRegions = kSortedResolveSlots.size() + 2;
 constexpr std::size_t kPixelListHeaderWords = kPixelListRegions + 1;
 constexpr GLuint kHeadsUnit = 0, kColourUnit = 1;
 // The pool (volume_fragments.glsl, block Fragments): count, capacity, overflow, truncated pixels.
@@ -86,7 +86,11 @@ VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long 
 
 VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
     : gl_(gl), budget_(budget), pool_(gl), cut_(gl), pixelLists_(gl) {
-  sortedProgram(0);  // every frame with a list needs the first stage; the others link on first use
+  singleProgram_ = linkComputeProgram(
+      gl, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_single.comp.glsl"},
+      fragmentDefines() + glslDefine("STAGES", static_cast<int>(kSortedResolveSlots.size())) +
+          glslDefine("SORTED_MAX", kShortListCapacity));
+  sortedProgram(0);  // most frames with lists need the first stage; the others link on first use
   longProgram_ = linkComputeProgram(
       gl, {"volume_fragments.glsl", "volume_pieces.glsl", "loop_budget.glsl", "volume_resolve.comp.glsl"},
       fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel));
@@ -228,19 +232,23 @@ void VolumeResolve::resolveTile(GLuint colourTexture) {
   pool_.bind(kPoolBinding);
   gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
   gl_.BindImageTexture(kColourUnit, colourTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  // Region 0: the pixels the particle pass listed. The first sorted resolve takes the lists of up
-  // to 4 segments and hands each longer one to the region of the stage that fits it; each later
-  // stage resolves its region; the chunked resolve takes the last.
+  // Region 0: the pixels the particle pass listed. The first resolve composites the lists of one
+  // segment and hands each longer one to the region of the sorted stage that fits it (stage i's is
+  // region i + 1) or to the chunked resolve's, the last.
   GLuint counts[kPixelListRegions] = {};
   pixelLists_.read(0, sizeof counts, counts);
-  for (std::size_t i = 0; i < kSortedResolveSlots.size(); ++i) {
-    if (counts[i] == 0) continue;
-    const GlProgram& program = sortedProgram(i);
-    gl_.UseProgram(program.id());
-    if (i == 0) gl_.Uniform1i(program.uniform("uShortList"), shortList_);
-    gl_.DispatchCompute(groupsFor(counts[i], kResolveGroup), 1, 1);
+  if (counts[0] > 0) {
+    gl_.UseProgram(singleProgram_.id());
+    gl_.Uniform1i(singleProgram_.uniform("uShortList"), shortList_);
+    gl_.DispatchCompute(groupsFor(counts[0], kResolveGroup), 1, 1);
     fullBarrier(gl_);
-    if (i == 0) pixelLists_.read(0, sizeof counts, counts);
+    pixelLists_.read(0, sizeof counts, counts);
+  }
+  for (std::size_t i = 0; i < kSortedResolveSlots.size(); ++i) {
+    if (counts[i + 1] == 0) continue;
+    gl_.UseProgram(sortedProgram(i).id());
+    gl_.DispatchCompute(groupsFor(counts[i + 1], kResolveGroup), 1, 1);
+    fullBarrier(gl_);
   }
   const GLuint chunked = counts[kPixelListRegions - 1];
   if (chunked > 0) {
@@ -255,7 +263,7 @@ void VolumeResolve::resolveTile(GLuint colourTexture) {
   cut_.read(0, sizeof cut, &cut);
   counts_.cutPixels += cut;
   // Over 8 segments: the regions after the 8-segment stage's, the chunked one included.
-  for (std::size_t r = 2; r < kPixelListRegions; ++r) counts_.midLists += counts[r];
+  for (std::size_t r = 3; r < kPixelListRegions; ++r) counts_.midLists += counts[r];
   counts_.longLists += chunked;
 }
 

@@ -10,9 +10,10 @@
 // are composited behind them.
 //
 // The particle pass lists the pixels whose list it starts, and the resolves visit only those.
-// Five programs. The first counts each listed pixel's segments and resolves the lists of up to 4;
-// it hands each longer list to the program for up to 8, 16 or 32 segments (kSortedResolveSlots;
-// at most RenderSettings::volumeShortList), or to the chunked one. Up to 32 they are sorted by a
+// Six programs. The first counts each listed pixel's segments and composites the lists of one
+// (shaders/volume_resolve_single.comp.glsl); it hands each longer list to the program for up to
+// 4, 8, 16 or 32 segments (kSortedResolveSlots; at most RenderSettings::volumeShortList), or to
+// the chunked one. Up to 32 they are sorted by a
 // sorting network written out with constant indices (render/SortingNetwork.h,
 // shaders/volume_resolve_sorted.comp.glsl), so their events stay in registers; the longer ones
 // are sorted in chunks of kMaxSegmentsPerPixel in arrays, each chunk composited exactly and the
@@ -121,6 +122,7 @@ class VolumeResolve {
   // Linked when a frame first needs them: llvmpipe compiles the straight-line network of 32
   // segments (543 compare-exchanges) in seconds, once per machine with its shader cache.
   std::array<GlProgram, kSortedResolveSlots.size()> sortedPrograms_;
+  GlProgram singleProgram_;  // the first resolve: lists of one segment, the others sorted out
   GlProgram longProgram_;
   StorageBuffer pool_;
   StorageBuffer cut_;        // the resolves' count of pixels the GL cut short (binding 3)

@@ -16,13 +16,12 @@
 // that tie in all of them are copies of one segment, so the result depends on the set of
 // segments only, not on the order in which the particle pass pushed them.
 //
-// One invocation per pixel of PixelLists' region STAGE, in work groups of 64. Stage 0 (SLOTS = 4)
-// runs over the pixels the particle pass listed: it counts each list and resolves those of up to
-// 4 segments, and appends each other pixel to the region of the stage whose SLOTS fits its list
-// (each stage twice the one before), or of the chunked resolve (volume_resolve.comp.glsl); so the
-// later stages see only lists of their own length. Preceded by volume_fragments.glsl,
-// volume_pieces.glsl and the defines of render/VolumeResolve.cpp: STAGE, STAGES (the number of
-// sorted stages, the chunked resolve's region), SLOTS = 4·2^STAGE, SORTED_MAX = 4·2^(STAGES − 1),
+// One invocation per pixel of PixelLists' region STAGE + 1, in work groups of 64: the pixels
+// whose lists the first resolve (volume_resolve_single.comp.glsl) counted and found to fit SLOTS
+// and not half of it (stage 0: 2 to 4 segments), so each stage sees only lists of its own length.
+// Preceded by volume_fragments.glsl, volume_pieces.glsl and the defines of
+// render/VolumeResolve.cpp: STAGE, STAGES (the number of sorted stages), SLOTS = 4·2^STAGE,
+// SORTED_MAX = 4·2^(STAGES − 1),
 // and LOAD_SLOTS, SORT_EVENTS, SWEEP_EVENTS, the macros below written out for each slot, each
 // compare-exchange of render/SortingNetwork.h and each event.
 
@@ -34,7 +33,6 @@ layout(local_size_x = 64) in;
 
 layout(r32ui, binding = 0) uniform readonly uimage2D uHeads;
 layout(rgba32f, binding = 1) uniform image2D uColor;  // in: overflow (rgb, T); out: the result
-uniform int uShortList;  // longer lists go to the chunked resolve (RenderSettings::volumeShortList; stage 0)
 
 // An event is two vec4: h = (distance t along the view ray, +1 entry / −1 exit / 0 empty, the
 // segment's entry a, its exit b), world units; s = (κ per world unit, κ·C), the segment's.
@@ -102,21 +100,9 @@ vec4 s[2 * SLOTS];
   last = h[k].x;
 
 void main() {
-  if (gl_GlobalInvocationID.x >= regionCount[STAGE]) return;
-  ivec2 px = unpackPixel(pixels[uint(STAGE) * pixelCapacity + gl_GlobalInvocationID.x]);
+  if (gl_GlobalInvocationID.x >= regionCount[STAGE + 1]) return;
+  ivec2 px = unpackPixel(pixels[uint(STAGE + 1) * pixelCapacity + gl_GlobalInvocationID.x]);
   uint node = imageLoad(uHeads, px).x;
-#if STAGE == 0
-  // Every listed pixel: its list's length L (counted up to one past the longest sorted), and the
-  // region of the resolve that takes it: stage r holds 4·2^r segments (L in (2^(r+1), 2^(r+2)]),
-  // the chunked resolve takes the rest and every list over uShortList.
-  int length = 0;
-  for (uint n = node; n != FRAGMENT_LIST_END && length <= SORTED_MAX; n = fragmentNext(n)) ++length;
-  int region = length > uShortList ? STAGES : clamp(findMSB(length - 1) - 1, 0, STAGES);
-  if (region != 0) {
-    pixels[uint(region) * pixelCapacity + atomicAdd(regionCount[region], 1u)] = packPixel(px);
-    return;
-  }
-#endif
   const float infinity = uintBitsToFloat(0x7f800000u);
   LOAD_SLOTS
   SORT_EVENTS
