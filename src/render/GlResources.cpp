@@ -148,9 +148,14 @@ FloatRenderTarget::FloatRenderTarget(const GlFunctions& gl, const GlContext& con
     release();
     throw GlError("the float framebuffer (RGBA32F + R32F) is not complete on " + context.description());
   }
+  bind();
+}
+
+void FloatRenderTarget::bind() const {
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   const GLenum drawBuffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  gl.DrawBuffers(2, drawBuffers);
-  gl.Viewport(0, 0, width, height);
+  gl_.DrawBuffers(2, drawBuffers);
+  gl_.Viewport(0, 0, width_, height_);
 }
 
 FloatRenderTarget::~FloatRenderTarget() { release(); }

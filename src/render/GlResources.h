@@ -108,6 +108,9 @@ class FloatRenderTarget {
   GLuint colourTexture() const { return colourTexture_; }
   GLuint distanceTexture() const { return distanceTexture_; }
 
+  // Makes it the draw framebuffer: both attachments drawn to, the viewport over them.
+  void bind() const;
+
   // Both attachments read back (binding this framebuffer): rows top first, A = 1 − transmittance,
   // distances of kNoDistance or more as +infinity.
   Image readBack() const;

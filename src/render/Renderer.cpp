@@ -54,6 +54,9 @@ struct Renderer::Impl {
   VolumeResolve volume;
   Upscale upscale;
   std::unique_ptr<SkyPass> sky;  // issue 13: made when a frame first uses the atmosphere
+  // The particle buffer, kept from frame to frame while its size holds: a new one costs the GL a
+  // fresh allocation, and llvmpipe its page faults inside the draw.
+  std::unique_ptr<FloatRenderTarget> target;
 
   Impl(GlContext& c, const io::LutSet& luts)
       : context(c),
@@ -175,7 +178,11 @@ struct Renderer::Impl {
       volume.bindUnused();
 
     // Float framebuffer: radiance + transmittance (a texture, for the resolve), and distance.
-    FloatRenderTarget target(gl, context, w, h);
+    if (!target || target->width() != w || target->height() != h) {
+      target.reset();
+      target = std::make_unique<FloatRenderTarget>(gl, context, w, h);
+    }
+    target->bind();
     const float clearColour[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     const float clearDistance[4] = {kNoDistance, 0.0f, 0.0f, 0.0f};
     gl.ClearBufferfv(GL_COLOR, 0, clearColour);
@@ -183,7 +190,7 @@ struct Renderer::Impl {
 
     const Stopwatch drawClock;
     if (blendVolume) {
-      volume.run(target.colourTexture(),
+      volume.run(target->colourTexture(),
                  [&] { particles.draw(count, useOrder, true, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith, diffusion); });
       if (stats) {
         const VolumeResolve::Counts c = volume.counts();
@@ -208,11 +215,11 @@ struct Renderer::Impl {
 
     if (s.downscale > 1) {
       const Stopwatch upscaleClock;
-      upscale.run(target, s.width, s.height);
+      upscale.run(*target, s.width, s.height);
       if (stats) stats->upscaleSeconds = upscaleClock.seconds();
     }
     const Stopwatch readClock;
-    Image image = s.downscale > 1 ? upscale.readBack() : target.readBack();
+    Image image = s.downscale > 1 ? upscale.readBack() : target->readBack();
     if (stats) stats->readbackSeconds = readClock.seconds();
     // --- atmosphere (issue 13, render/SkyPass.h): the sky, the ground, aerial perspective
     if (s.view.lighting.atmosphere) {
