@@ -23,8 +23,9 @@ constexpr unsigned kGroup = 4;  // the shader's local size per axis
 // 800 sweeps what plain Gauss-Seidel had not in 1600 (docs/LIGHTING.md).
 constexpr float kOverRelaxation = 1.8f;
 constexpr int kCoarseUnit = 2;  // texture unit of the coarser level's field (prolongation)
-// STAGE 5 (the coarsest level's sweeps in one work group of kWholeGroup invocations) for a level
-// of at most kOneGroupNodes nodes: llvmpipe runs a work group on one core, which beats a dispatch
+// STAGE 5 (a level's sweeps in one work group of kWholeGroup invocations) for any level of at
+// most kOneGroupNodes nodes (the coarsest, and every level of a small scene's grid, e.g. a single
+// particle's): llvmpipe runs a work group on one core, which beats a dispatch
 // per half-sweep on both cores only while the half-sweep is small. And while each invocation's
 // loops stay under llvmpipe's 65535 passes in all (render/VolumeResolve.h), with a margin.
 constexpr int kWholeGroup = 256;  // the shader's WHOLE_GROUP
@@ -126,7 +127,7 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
       ProgramUniforms(gl_, stages_[4].id()).set("uCoarseField", kCoarseUnit);
       dispatch(d);
     }
-    if (l == levelCount_ - 1 && inOneGroup(levels_[l].nodes, sweeps)) {
+    if (inOneGroup(levels_[l].nodes, sweeps)) {
       use(5, l);
       gl_.Uniform1i(stages_[5].uniform("uSweeps"), sweeps);
       dispatch(glm::ivec3(1));

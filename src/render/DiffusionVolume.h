@@ -30,7 +30,7 @@ class DiffusionVolume {
   // Solves over the nodes of `columns` (one cascade, columns toward +y) lit through `sun` (bound
   // to texture unit `sunUnit` for the solve), for a later phase function of mean cosine g: coarse
   // to fine over up to kLevels levels (each halving the nodes per side), `sweeps` red-black
-  // over-relaxed Gauss-Seidel sweeps on every level (a small coarsest level's in a single
+  // over-relaxed Gauss-Seidel sweeps on every level (a small level's in a single
   // dispatch, the same updates in the same order; docs/LIGHTING.md "Convergence"). With
   // fadeNodes > 0 (a box over part of a wider scene, whose sides cut clouds) the shader fades
   // the field out toward the grid's horizontal sides over that many nodes (diffusion_sampling.glsl).
