@@ -203,10 +203,11 @@ void main() {
       }
       // the diffusion volume's share of the multiple light, where it has a field
       // (diffusionShareOfMultiple): the diffuse field at x̄ scattered toward the camera
-      // (diffusedRadiance) times the chord's opacity, times the diffusion's gain
+      // (diffusedRadiance) times the chord's opacity, times the diffusion's gain. The particle
+      // that holds the eye keeps the tables' term (docs/LIGHTING.md, "Camera inside a particle").
       float presence, beside;
       vec4 field = diffusionFieldAt(xMean, presence, beside);
-      if (presence > 0.0) {
+      if (presence > 0.0 && !inside) {
         float diffused = uDiffusionGain * chordOpacity(tau) * diffusedRadiance(field.x, field.yzw, -dir, uLaterAsymmetry);
         // a particle the sun column calls alone may stand beside a cloud (cloudBesideWeight)
         float inCloud = max(weight, beside);
