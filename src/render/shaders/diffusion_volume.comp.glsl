@@ -106,19 +106,26 @@ void updateNode(ivec3 n, float gStar, float hMin) {
 }
 #endif
 
+// Red-black: a half-sweep's lane (i, j, k), i over half the nodes along x, stands for the node of
+// its row whose colour (i + j + k) mod 2 is `colour` (a lane per node of the other colour too
+// would run masked and cost the same).
+ivec3 colourNode(ivec3 lane, int colour) { return ivec3(2 * lane.x + ((lane.y + lane.z + colour) & 1), lane.yz); }
+// The δ-Eddington asymmetry g* (dimensionless) and the smallest node spacing (world units).
+float scaledAsymmetry() { return deltaEddingtonAsymmetry(uLaterAsymmetry); }
+float smallestSpacing() { return min(uSpacing.x, min(uSpacing.y, uSpacing.z)); }
+
 #if STAGE == 5
 // One work group: its invocations take the nodes of one colour in turn (every other one along x,
 // as STAGE 1's dispatch), then wait for each other before the other colour.
 void main() {
-  float gStar = deltaEddingtonAsymmetry(uLaterAsymmetry);
-  float hMin = min(uSpacing.x, min(uSpacing.y, uSpacing.z));
+  float gStar = scaledAsymmetry();
+  float hMin = smallestSpacing();
   int halfX = (uNodes.x + 1) / 2;
   int count = halfX * uNodes.y * uNodes.z;
   for (int i = 0; i < 2 * uSweeps; ++i) {
     int colour = i & 1;
     for (int k = int(gl_LocalInvocationIndex); k < count; k += WHOLE_GROUP) {
-      ivec3 n = ivec3(k % halfX, (k / halfX) % uNodes.y, k / (halfX * uNodes.y));
-      n.x = 2 * n.x + ((n.y + n.z + colour) & 1);
+      ivec3 n = colourNode(ivec3(k % halfX, (k / halfX) % uNodes.y, k / (halfX * uNodes.y)), colour);
       if (!outside(n)) updateNode(n, gStar, hMin);
     }
     memoryBarrierImage();
@@ -129,14 +136,12 @@ void main() {
 void main() {
   ivec3 n = ivec3(gl_GlobalInvocationID);
 #if STAGE == 1
-  // red-black: the dispatch covers half the nodes along x, those of colour uColour, (i + j + k)
-  // mod 2 = uColour; a lane per node of the other colour would run masked and cost the same
-  n.x = 2 * n.x + ((n.y + n.z + uColour) & 1);
+  n = colourNode(n, uColour);  // the dispatch covers the nodes of colour uColour
 #endif
   if (outside(n)) return;
   float f = deltaEddingtonForwardShare(uLaterAsymmetry);
-  float gStar = deltaEddingtonAsymmetry(uLaterAsymmetry);
-  float hMin = min(uSpacing.x, min(uSpacing.y, uSpacing.z));
+  float gStar = scaledAsymmetry();
+  float hMin = smallestSpacing();
 #if STAGE == 0
   // σ from the vertical volume: τ falls toward +y by σ per unit length (central difference)
   ivec3 up = n, down = n;
