@@ -203,11 +203,14 @@ void main() {
       }
       // the diffusion volume's share of the multiple light, where it has a field
       // (diffusionShareOfMultiple): the diffuse field at x̄ scattered toward the camera
-      // (diffusedRadiance) times the chord's opacity, times the diffusion's gain. The particle
-      // that holds the eye keeps the tables' term (docs/LIGHTING.md, "Camera inside a particle").
+      // (diffusedRadiance) times the chord's opacity, times the diffusion's gain. In the particle
+      // that holds the eye the share falls with the square of the seen part of the chord,
+      // `front` (1 outside and as the eye enters, so no step): the tables' term holds its short
+      // front segment better (docs/LIGHTING.md, "Camera inside a particle").
       float presence, beside;
       vec4 field = diffusionFieldAt(xMean, presence, beside);
-      if (presence > 0.0 && !inside) {
+      presence *= front * front;
+      if (presence > 0.0) {
         float diffused = uDiffusionGain * chordOpacity(tau) * diffusedRadiance(field.x, field.yzw, -dir, uLaterAsymmetry);
         // a particle the sun column calls alone may stand beside a cloud (cloudBesideWeight)
         float inCloud = max(weight, beside);
