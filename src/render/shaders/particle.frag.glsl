@@ -128,11 +128,16 @@ void main() {
   float transmittance = exp(-tau);
 
   // Where the light is scattered on average along the chord (world point): its first matter,
-  // then the e^{−τt}-weighted mean of the stretch up to its last matter. Inside, the matter
-  // starts at the eye. The last matter is the texture's channel 2 (core/LastMatter.h), a share
-  // of the whole chord; the empty stretch after it, 1 − last, is of the seen part 1/front times
-  // as much.
-  float firstMatter = inside ? 0.0 : clamp(od.y, 0.0, 1.0);
+  // then the e^{−τt}-weighted mean of the stretch up to its last matter. The first matter is the
+  // texture's channel 1, a share of the whole chord from its entry, at world distance
+  // tEnter + od.y·(tExit − tEnter); inside, the seen part [tNear, tExit] keeps what of that empty
+  // stretch the eye has not yet passed (none once past it), so the point does not jump as the eye
+  // enters (docs/LIGHTING.md, "Camera inside a particle"). The last matter is channel 2
+  // (core/LastMatter.h), a share of the whole chord; the empty stretch after it, 1 − last, is of
+  // the seen part 1/front times as much.
+  float firstMatter = clamp(od.y, 0.0, 1.0);
+  if (inside)
+    firstMatter = clamp((tEnter + firstMatter * (tExit - tEnter) - tNear) / max(tExit - tNear, 1e-30), 0.0, 1.0);
   float lastMatter = 1.0 - min((1.0 - clamp(od.z, 0.0, 1.0)) / max(front, 1e-6), 1.0 - firstMatter);
   float tMean = tNear + (tExit - tNear) * meanScatteringShare(firstMatter, lastMatter, tau);
   vec3 xMean = uEye + dir * tMean;
