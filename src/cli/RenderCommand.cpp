@@ -221,6 +221,9 @@ int runRender(int argc, char** argv) {
                   file.c_str(), image.width, image.height, stats.particles, render::toString(settings.blend),
                   1e3 * stats.generateSeconds, 1e3 * stats.occlusionSeconds, 1e3 * stats.renderSeconds,
                   1e3 * setupSeconds, context->description().c_str());
+      if (stats.litParticles > 0)
+        std::printf("  light-space passes over %zu particles within the far distance (in view or not)\n",
+                    stats.litParticles);
       if (settings.downscale > 1)
         std::printf("  particles at 1/%d resolution, upscale %.1f ms\n", settings.downscale, 1e3 * stats.upscaleSeconds);
       if (settings.blend == render::BlendMode::Volume)

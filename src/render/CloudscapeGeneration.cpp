@@ -16,9 +16,10 @@ namespace {
 
 constexpr GLuint kCellsBinding = 6;
 // The cell-list buffer (cloudscape_generate.comp.glsl, block Generation): four counters, the
-// indirect dispatch arguments (uvec4 at byte 16), then per listed cell an ivec4 (its index, ring
-// and layers) and a vec4 (its cloud: amount, mass factor).
-constexpr std::size_t kCellsHeaderBytes = 32;
+// indirect dispatch arguments (uvec4 at byte 16), the count of keys (the particles in the frustum,
+// at byte 32, padded to 48), then per listed cell an ivec4 (its index, ring and layers) and a vec4
+// (its cloud: amount, mass factor).
+constexpr std::size_t kCellsHeaderBytes = 48;
 constexpr std::size_t kCellBytes = 32;
 constexpr std::size_t kIndirectOffset = 16;
 
@@ -59,7 +60,7 @@ CloudscapeGeneration::Result CloudscapeGeneration::run(const scene::CloudType& c
 
   // Reset the counters (cells, particles, capacity, overflow) and the indirect arguments; pad the
   // keys with distance -1 (sorts last).
-  const GLuint header[8] = {0, 0, static_cast<GLuint>(capacity), 0, 0, 1, 1, 0};
+  const GLuint header[12] = {0, 0, static_cast<GLuint>(capacity), 0, 0, 1, 1, 0, 0, 0, 0, 0};
   cells_.write(0, sizeof header, header);
   const float minusOne = -1.0f;
   GLuint pad[2] = {0, 0xffffffffu};
@@ -95,15 +96,16 @@ CloudscapeGeneration::Result CloudscapeGeneration::run(const scene::CloudType& c
     }
     fullBarrier(gl_);
   }
-  GLuint counts[4] = {0, 0, 0, 0};
+  GLuint counts[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   cells_.read(0, sizeof counts, counts);
   checkGlError(gl_, "generating the cloudscape");
   Result out;
   out.cells = counts[0];
   out.count = std::min<std::size_t>(counts[1], capacity);
+  out.visible = std::min<std::size_t>(counts[8], out.count);
   const glm::vec2 maxR = scene::grid::cgMaxRadii(q.rings - 1, g.g0, g.g1, g.g2);
   out.farPlane = g.g3.y + 2.0f * std::max(maxR.x, maxR.y) + 1.0f;
-  if (sortKeys && out.count > 1) sort(out.count);
+  if (sortKeys && out.visible > 1) sort(out.visible);
   return out;
 }
 
@@ -130,8 +132,10 @@ scene::CpuGeneration CloudscapeGeneration::readBack(const Result& generated, con
   const scene::GridParameters g = scene::gridParameters(cloud, quality);
   scene::CpuGeneration out;
   out.validCells = generated.cells;
-  for (const GpuParticleRecord& r : buffers_.readRecords(generated.count))
-    out.particles.push_back(unpackGridParticle(r, g, settings.view.camera.eye));
+  out.lit = generated.count;
+  const std::vector<GpuParticleRecord> records = buffers_.readRecords(generated.count);
+  for (const std::uint32_t index : buffers_.readKeyIndices(generated.visible))
+    out.particles.push_back(unpackGridParticle(records.at(index), g, settings.view.camera.eye));
   checkGlError(gl_, "reading the particles back");
   return out;
 }

@@ -2,10 +2,12 @@
 // GPU generation of a procedural cloudscape (seed §5.2) into the particle records, and the
 // bitonic sort of their back-to-front keys (shaders/cloudscape_generate.comp.glsl,
 // shaders/bitonic_sort.comp.glsl): the cells of the camera-centred clipmap grid
-// (scene/glsl/cloudscape_grid.glsl) that are non-empty and in the frustum are listed, then each
-// listed cell emits its particles (frustum- and far-culled) with the key (distance from the eye to
-// the centre, record index). The sort orders the keys by decreasing distance (ties by index) for
-// alpha blending; volume blending and the occlusion need no order.
+// (scene/glsl/cloudscape_grid.glsl) that are non-empty and within the far distance are listed, then
+// each listed cell emits its particles within the far distance as records, whatever the frustum
+// (the light-space passes take them all: a particle out of view still shadows and makes up the
+// clouds in view), and those in the frustum also as keys (distance from the eye to the centre,
+// record index), the ones the particle pass draws. The sort orders the keys by decreasing
+// distance (ties by index) for alpha blending; volume blending and the occlusion need no order.
 #include <cstddef>
 
 #include "render/GlFunctions.h"
@@ -22,8 +24,9 @@ class CloudscapeGeneration {
   CloudscapeGeneration(const GlFunctions& gl, const StorageBudget& budget, ParticleBuffers& buffers);
 
   struct Result {
-    std::size_t count = 0;  // records written (at most the quality's particle slots)
-    std::size_t cells = 0;  // non-empty cells in the frustum
+    std::size_t count = 0;    // records written (at most the quality's particle slots): the light-space set
+    std::size_t visible = 0;  // of those, the ones in the frustum: the first `visible` keys index them
+    std::size_t cells = 0;    // non-empty cells within the far distance
     // World distance that holds every particle: the modelled far distance + 2 · the largest
     // radius of the outer ring + 1.
     float farPlane = 1.0f;
@@ -35,7 +38,8 @@ class CloudscapeGeneration {
   Result run(const scene::CloudType& cloud, const scene::QualityPreset& quality, const RenderSettings& settings,
              bool sortKeys, float referenceRadius);
 
-  // The first `count` records as grid particles (unpackGridParticle).
+  // The records the first `visible` keys index (the particles drawn) as grid particles
+  // (unpackGridParticle), and how many records the light-space passes take (CpuGeneration::lit).
   scene::CpuGeneration readBack(const Result& generated, const scene::CloudType& cloud,
                                 const scene::QualityPreset& quality, const RenderSettings& settings) const;
 

@@ -84,4 +84,11 @@ std::vector<GpuParticleRecord> ParticleBuffers::readRecords(std::size_t count) c
   return out;
 }
 
+std::vector<std::uint32_t> ParticleBuffers::readKeyIndices(std::size_t count) const {
+  std::vector<std::uint32_t> keys(2 * count), out(count);
+  if (count > 0) sortKeys.read(0, count * kSortKeyBytes, keys.data());
+  for (std::size_t i = 0; i < count; ++i) out[i] = keys[2 * i + 1];
+  return out;
+}
+
 }  // namespace cloudlut::render

@@ -18,6 +18,7 @@
 //                     [1] cell x, [2] cell z.
 // The ray marcher reads the first four vec4 only.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -73,6 +74,8 @@ struct ParticleBuffers {
 
   // The first `count` records, copied back from the GPU.
   std::vector<GpuParticleRecord> readRecords(std::size_t count) const;
+  // The record indices of the first `count` sort keys, copied back from the GPU.
+  std::vector<std::uint32_t> readKeyIndices(std::size_t count) const;
 };
 
 }  // namespace cloudlut::render

@@ -136,7 +136,8 @@ struct RenderStats {
   double readbackSeconds = 0;   // the final image to the CPU
   double skySeconds = 0;        // the atmosphere's sky pass (render/SkyPass.h), when the sky is the atmosphere
   std::size_t particles = 0;         // drawn
-  std::size_t validCells = 0;        // cloudscapes: non-empty cells in the frustum
+  std::size_t validCells = 0;        // cloudscapes: non-empty cells within the far distance
+  std::size_t litParticles = 0;      // cloudscapes: particles the light-space passes took (in view or not)
   std::size_t fragments = 0;         // volume: fragments produced
   std::size_t fragmentOverflow = 0;  // volume: fragments alpha-blended for want of pool room
   std::size_t truncatedPixels = 0;   // volume: pixels with more than kMaxSegmentsPerPixel segments

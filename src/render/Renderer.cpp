@@ -262,12 +262,13 @@ struct Renderer::Impl {
     if (stats) {
       stats->generateSeconds = clock.seconds();
       stats->validCells = g.cells;
+      stats->litParticles = g.count;
     }
     const RenderSettings lit = litByAtmosphere(s, 0.5f * (cloud.cloudBase + cloud.cloudTop));
     const Built built = illuminate(g.count, needsSunVolume(lit) ? sunGridFor(cloud, q, lit) : SunVolumeGrid{},
                                    needsZenithVolume(lit) ? zenithGridFor(cloud, q, lit) : SunVolumeGrid{}, lit, stats,
                                    diffusionGridFor(cloud, q, lit));
-    return draw(g.count, alpha, g.farPlane, lit, built, stats);
+    return draw(g.visible, true, g.farPlane, lit, built, stats);  // the keys index the particles in view
   }
 
   // --- atmosphere (issue 13): the sky pass, and the settings whose sun colour and ambient the

@@ -193,7 +193,9 @@ Frustum cameraFrustum(const Camera& camera, int width, int height) {
 
 namespace {
 
-// The grid's particles around `eye`; with a frustum, only the cells and particles in it.
+// The grid's particles around `eye` within the far distance; with a frustum, only the particles in
+// it (the cells listed are every non-empty one within the far distance, as on the GPU, and `lit`
+// counts every particle within it, the light-space passes' set).
 CpuGeneration generate(const CloudType& cloud, const QualityPreset& q, const glm::vec3& eye, const Frustum* fr,
                        float referenceRadius) {
   const GridParameters g = gridParameters(cloud, q, referenceRadius);
@@ -213,9 +215,7 @@ CpuGeneration generate(const CloudType& cloud, const QualityPreset& q, const glm
         const float w = grid::cgRingWeight(ring, std::max(delta.x, delta.y), g.g0, g.g3);
         if (!(w > 0.0f)) continue;
         const glm::vec4 b = grid::cgCellBound(ring, ix, iz, g.g0, g.g1, g.g2, g.g3);
-        if (!grid::cgVisible(glm::vec3(b), b.w, eye, g.g3.y + b.w, f.planes[0], f.planes[1], f.planes[2],
-                             f.planes[3], f.planes[4]))
-          continue;
+        if (glm::length(glm::vec3(b) - eye) > g.g3.y + b.w) continue;  // cgVisible's far test
         const glm::vec2 cellCloud = grid::cgCellCloud(ring, ix, iz, g.g0, g.g1, g.g2, g.g3, g.g4);
         const int layers = grid::cgLayerCount(cellCloud.x, g.g0, g.g4);
         if (layers < 1) continue;
@@ -224,6 +224,8 @@ CpuGeneration generate(const CloudType& cloud, const QualityPreset& q, const glm
           const grid::CgParticle p =
               grid::cgParticle(ring, ix, iz, k, cellCloud.x, cellCloud.y, w, g.g0, g.g1, g.g2, g.g3, g.g4);
           const float reach = std::max(p.radii.x, p.radii.y);
+          if (glm::length(p.centre - eye) > g.g3.y) continue;
+          ++out.lit;
           if (!grid::cgVisible(p.centre, reach, eye, g.g3.y, f.planes[0], f.planes[1], f.planes[2], f.planes[3],
                                f.planes[4]))
             continue;

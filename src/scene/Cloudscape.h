@@ -103,9 +103,11 @@ struct GridParticle {
 
 struct CpuGeneration {
   std::vector<GridParticle> particles;
-  std::size_t validCells = 0;  // non-empty cells in the frustum
+  std::size_t validCells = 0;  // non-empty cells within the far distance
+  std::size_t lit = 0;         // particles within the far distance: those the light-space passes take
 };
-// CPU reference of the GPU generation: the same cells, the same particles (any order).
+// CPU reference of the GPU generation: the same cells (every non-empty one within the far
+// distance), the same particles drawn (those in the frustum, any order), the same `lit`.
 CpuGeneration generateCloudscapeCpu(const CloudType& cloud, const QualityPreset& quality, const Camera& camera,
                                     int width, int height,
                                     float referenceRadius = static_cast<float>(defaults::kParticleRadiusMetres));

@@ -2,13 +2,18 @@
 // cloudscape_grid.glsl and particle_common.glsl, and by the defines of
 // render/CloudscapeGeneration.cpp: STAGE (below), GROUP_SIZE (threads per work group, from which
 // the C++ and stage 1 compute the dispatch sizes) and GRID_LAYER_LIMIT (the grid identity):
-//   STAGE 0: one thread per grid cell (ring-major); non-empty cells in the frustum are appended
-//            (atomic counter) to the cell list with their cloud (cgCellCloud: amount, mass factor);
+//   STAGE 0: one thread per grid cell (ring-major); non-empty cells within the far distance are
+//            appended (atomic counter) to the cell list with their cloud (cgCellCloud: amount,
+//            mass factor);
 //   STAGE 1: one thread writes the indirect dispatch arguments for stage 2 from the counter;
 //   STAGE 2: one thread per valid cell (glDispatchComputeIndirect): its particles (from the cloud
-//            listed by stage 0, not sampled again), culled
-//            against the frustum and the far distance, appended to the particle buffer with their
-//            back-to-front sort key. The level-of-detail weight is folded into each particle's
+//            listed by stage 0, not sampled again) within the far distance, appended to the
+//            particle buffer, whatever the frustum: the light-space passes (sun, zenith and
+//            diffusion volumes, the seed's occlusion) take every one, so that the light of what
+//            the camera sees does not change as particles leave the view (they cast shadows and
+//            make up clouds all the same). Those in the frustum also get a back-to-front sort key,
+//            appended at the front of the key buffer (visibleCount of them): the particle pass
+//            draws those. The level-of-detail weight is folded into each particle's
 //            density (cgParticle) and not stored. A record maps the unit sphere by
 //            diag(radii) · Q (Q the particle's rotation of the reference particle).
 
@@ -34,6 +39,8 @@ layout(std430, binding = 6) buffer Generation {
   uint particleCapacity;
   uint particleOverflow;
   uvec4 dispatchArgs;  // x, y, z groups for stage 2
+  uint visibleCount;   // keys written: the particles in the frustum
+  uint visiblePad0, visiblePad1, visiblePad2;
   GenerationCell cells[];
 };
 
@@ -58,7 +65,7 @@ void main() {
   float w = cgRingWeight(ring, max(delta.x, delta.y), uG0, uG3);
   if (!(w > 0.0f)) return;
   vec4 b = cgCellBound(ring, ix, iz, uG0, uG1, uG2, uG3);
-  if (!cgVisible(b.xyz, b.w, uEye, uG3.y + b.w, uPlanes[0], uPlanes[1], uPlanes[2], uPlanes[3], uPlanes[4])) return;
+  if (length(b.xyz - uEye) > uG3.y + b.w) return;  // cgVisible's far test, without the frustum
   vec2 cloud = cgCellCloud(ring, ix, iz, uG0, uG1, uG2, uG3, uG4);
   int layers = cgLayerCount(cloud.x, uG0, uG4);
   if (layers < 1) return;
@@ -79,8 +86,7 @@ void main() {
   for (int k = 0; k < cell.w; ++k) {
     CgParticle p = cgParticle(ring, cell.x, cell.y, k, cloud.x, cloud.y, w, uG0, uG1, uG2, uG3, uG4);
     float reach = max(p.radii.x, p.radii.y);
-    if (!cgVisible(p.centre, reach, uEye, uG3.y, uPlanes[0], uPlanes[1], uPlanes[2], uPlanes[3], uPlanes[4]))
-      continue;
+    if (length(p.centre - uEye) > uG3.y) continue;  // cgVisible's far test, without the frustum
     uint slot = atomicAdd(particleCount, 1u);
     if (slot >= particleCapacity) {
       atomicAdd(particleOverflow, 1u);
@@ -105,7 +111,8 @@ void main() {
     g.toWorld[1] = vec4(c1, float(cell.x));
     g.toWorld[2] = vec4(c2, float(cell.y));
     particles[slot] = g;
-    sortKeys[slot] = uvec2(floatBitsToUint(length(p.centre - uEye)), slot);
+    if (cgVisible(p.centre, reach, uEye, uG3.y, uPlanes[0], uPlanes[1], uPlanes[2], uPlanes[3], uPlanes[4]))
+      sortKeys[atomicAdd(visibleCount, 1u)] = uvec2(floatBitsToUint(length(p.centre - uEye)), slot);
   }
 #endif
 }
