@@ -18,6 +18,7 @@
 #include "render/Renderer.h"
 #include "scene/Scene.h"
 #include "support/BakedFixtures.h"
+#include "support/ImageDifference.h"
 #include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
 #include "support/TempDir.h"
@@ -113,21 +114,9 @@ TEST_CASE("camera inside a particle: no step as the eye enters it", "[render][li
     return rig.renderer.render(s.particles, rs);
   };
   const render::Image outside = renderFrom(-1e-3f), inside = renderFrom(1e-3f);
-  double squares = 0.0, reference = 0.0, difference = 0.0, sum = 0.0;
-  std::size_t pixels = 0;
-  for (std::size_t i = 0; i < outside.rgba.size(); i += 4) {
-    if (outside.rgba[i + 3] <= 0.01f && inside.rgba[i + 3] <= 0.01f) continue;
-    ++pixels;
-    for (int k = 0; k < 3; ++k) {
-      const double a = inside.rgba[i + k], r = outside.rgba[i + k];
-      squares += (a - r) * (a - r);
-      reference += r * r;
-      difference += a - r;
-      sum += r;
-    }
-  }
-  REQUIRE(pixels > static_cast<std::size_t>(kWidth * kHeight / 2));
-  const double step = std::sqrt(squares / reference), bias = difference / sum;
+  const ColourDifference e = colourDifference(inside, outside);
+  REQUIRE(e.pixels > static_cast<std::size_t>(kWidth * kHeight / 2));
+  const double step = e.relativeRmse, bias = e.relativeBias;
   std::printf("[camera inside] entering the particle: step %.4f (relative RMSE), bias %+.4f\n", step, bias);
   CHECK(inside.nonFiniteCount() == 0);
   CHECK(step < 0.005);

@@ -215,7 +215,7 @@ CpuGeneration generate(const CloudType& cloud, const QualityPreset& q, const glm
         const float w = grid::cgRingWeight(ring, std::max(delta.x, delta.y), g.g0, g.g3);
         if (!(w > 0.0f)) continue;
         const glm::vec4 b = grid::cgCellBound(ring, ix, iz, g.g0, g.g1, g.g2, g.g3);
-        if (glm::length(glm::vec3(b) - eye) > g.g3.y + b.w) continue;  // cgVisible's far test
+        if (!grid::cgWithinFar(glm::vec3(b), b.w, eye, g.g3.y)) continue;
         const glm::vec2 cellCloud = grid::cgCellCloud(ring, ix, iz, g.g0, g.g1, g.g2, g.g3, g.g4);
         const int layers = grid::cgLayerCount(cellCloud.x, g.g0, g.g4);
         if (layers < 1) continue;
@@ -224,7 +224,7 @@ CpuGeneration generate(const CloudType& cloud, const QualityPreset& q, const glm
           const grid::CgParticle p =
               grid::cgParticle(ring, ix, iz, k, cellCloud.x, cellCloud.y, w, g.g0, g.g1, g.g2, g.g3, g.g4);
           const float reach = std::max(p.radii.x, p.radii.y);
-          if (glm::length(p.centre - eye) > g.g3.y) continue;
+          if (!grid::cgWithinFar(p.centre, 0.0f, eye, g.g3.y)) continue;
           ++out.lit;
           if (!grid::cgVisible(p.centre, reach, eye, g.g3.y, f.planes[0], f.planes[1], f.planes[2], f.planes[3],
                                f.planes[4]))

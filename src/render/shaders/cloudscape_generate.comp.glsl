@@ -65,7 +65,7 @@ void main() {
   float w = cgRingWeight(ring, max(delta.x, delta.y), uG0, uG3);
   if (!(w > 0.0f)) return;
   vec4 b = cgCellBound(ring, ix, iz, uG0, uG1, uG2, uG3);
-  if (length(b.xyz - uEye) > uG3.y + b.w) return;  // cgVisible's far test, without the frustum
+  if (!cgWithinFar(b.xyz, b.w, uEye, uG3.y)) return;  // a cell that may hold a particle in range
   vec2 cloud = cgCellCloud(ring, ix, iz, uG0, uG1, uG2, uG3, uG4);
   int layers = cgLayerCount(cloud.x, uG0, uG4);
   if (layers < 1) return;
@@ -86,7 +86,7 @@ void main() {
   for (int k = 0; k < cell.w; ++k) {
     CgParticle p = cgParticle(ring, cell.x, cell.y, k, cloud.x, cloud.y, w, uG0, uG1, uG2, uG3, uG4);
     float reach = max(p.radii.x, p.radii.y);
-    if (length(p.centre - uEye) > uG3.y) continue;  // cgVisible's far test, without the frustum
+    if (!cgWithinFar(p.centre, 0.0f, uEye, uG3.y)) continue;  // lit; keyed below if also in the frustum
     uint slot = atomicAdd(particleCount, 1u);
     if (slot >= particleCapacity) {
       atomicAdd(particleOverflow, 1u);

@@ -157,11 +157,16 @@ CLOUDLUT_FN vec4 cgCellBound(int ring, int ix, int iz, vec4 g0, vec4 g1, vec4 g2
   return vec4(c.x, 0.5f * (g1.z + g1.w), c.y, length(vec3(halfWidth, halfHeight, halfWidth)));
 }
 
+// True when some point of the sphere (centre c, radius r, metres) may lie within the far
+// distance of the eye, |c − eye| ≤ far + r: the cloudscape's range, the same for the particles
+// the light-space passes read and for the cells that hold them.
+CLOUDLUT_FN bool cgWithinFar(vec3 c, float r, vec3 eye, float far) { return length(c - eye) <= far + r; }
+
 // True when the sphere (centre c, radius r) is not entirely outside one of the planes
 // (dot(n, p) + w ≥ 0 inside) and its centre is within the far distance of the eye.
 CLOUDLUT_FN bool cgVisible(vec3 c, float r, vec3 eye, float far, vec4 p0, vec4 p1, vec4 p2, vec4 p3,
                            vec4 p4) {
-  if (length(c - eye) > far) return false;
+  if (!cgWithinFar(c, 0.0f, eye, far)) return false;
   if (dot(vec3(p0), c) + p0.w < -r) return false;
   if (dot(vec3(p1), c) + p1.w < -r) return false;
   if (dot(vec3(p2), c) + p2.w < -r) return false;
