@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <string>
 
 #include <glm/geometric.hpp>
 
@@ -14,6 +16,7 @@
 #include "core/TableLookup.h"
 #include "render/GlContext.h"
 #include "render/Renderer.h"
+#include "render/ShaderSources.h"
 #include "scene/Scene.h"
 #include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
@@ -373,5 +376,16 @@ TEST_CASE("render: the GPU bilateral upscale equals the filter computed on the C
     CHECK(distanceMismatch == 0);
     CHECK(boundaryLines * 10 <= static_cast<std::size_t>(s.width + s.height));
     CHECK(fromBilinear > 0.05);
+  }
+}
+
+TEST_CASE("shader sources: a float define is a GLSL float literal that reads back as the same float", "[render]") {
+  for (const float v : {1e-7f, 0.1f, 3.0f, -2.5f, 1e30f, 0.0f, 16777217.0f}) {
+    const std::string d = render::glslFloatDefine("X", v);
+    INFO(d);
+    REQUIRE(d.rfind("#define X ", 0) == 0);
+    const std::string literal = d.substr(10, d.size() - 11);
+    CHECK(literal.find_first_of(".eE") != std::string::npos);  // not an int literal
+    CHECK(std::strtof(literal.c_str(), nullptr) == v);
   }
 }

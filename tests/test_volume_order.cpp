@@ -14,6 +14,7 @@
 #include "core/Errors.h"
 #include "render/GlContext.h"
 #include "render/Renderer.h"
+#include "render/VolumeResolve.h"
 #include "scene/Scene.h"
 #include "support/CliRunner.h"
 #include "support/RenderFixture.h"
@@ -198,6 +199,41 @@ TEST_CASE("volume order: a stack of disjoint particles composites front to back 
     CHECK(worst.alpha < 1e-4);
     CHECK(worst.colour < 1e-3);
   }
+}
+
+TEST_CASE("volume order: the chunked resolve stops behind an opaque chunk, and the image stays alpha blending's",
+          "[render][volume]") {
+  // Sixty disjoint spheres (as above), the nearer thirty dense: each pixel down the column has
+  // more than one chunk of segments, and its first chunk lets through less than
+  // kOpaqueTransmittance. The resolve takes no second chunk, and the image is still what alpha
+  // blending in depth order gives (the far ones add less than a float's rounding).
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
+  RenderSettings s = columnSettings(3.0f);
+  const std::vector<Particle> ps = column(60, 0.2f, 0.45f, 0.03f, 40.0f, 0.02f);
+  s.blend = BlendMode::Alpha;
+  const Image alpha = renderer.render(ps, s);
+  s.blend = BlendMode::Volume;
+  RenderStats stats;
+  const Image volume = renderer.render(ps, s, &stats);
+  REQUIRE(stats.fragmentOverflow == 0);
+  REQUIRE(stats.longListPixels > 20);  // lists longer than the sorting networks take, and than a chunk
+  // the nearest thirty alone are opaque: what the far ones could add is below kOpaqueTransmittance
+  const std::vector<Particle> nearHalf(ps.begin(), ps.begin() + 30);
+  s.blend = BlendMode::Alpha;
+  const Image nearOnly = renderer.render(nearHalf, s);
+  std::size_t opaque = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) opaque += 1.0f - nearOnly.pixel(x, y)[3] < kOpaqueTransmittance ? 1 : 0;
+  const WorstDifference worst = worstDifference(volume, alpha);
+  std::printf("[volume order] 60 disjoint spheres, the near 30 dense: %zu pixels over 32 segments, %zu opaque "
+              "after them, %zu resolved in more than one chunk; max |volume - alpha| opacity %.2e, colour "
+              "(relative) %.2e\n",
+              stats.longListPixels, opaque, stats.truncatedPixels, worst.alpha, worst.colour);
+  REQUIRE(opaque >= 20);
+  CHECK(stats.truncatedPixels == 0);
+  CHECK(worst.alpha < 1e-4);
+  CHECK(worst.colour < 1e-3);
 }
 
 TEST_CASE("volume order: a pixel beyond the GL's loop budget is reported, never silently wrong", "[render][volume]") {

@@ -174,7 +174,7 @@ void benchRender(BenchReport& report, const BenchOptions& options) {
       renderer.renderCloudscape(scene.cloud, q, s, &st);
       const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       char note[256];
-      std::snprintf(note, sizeof note, "%zu particles, %zu cells, %zu fragments (%zu overflow, %zu truncated px)",
+      std::snprintf(note, sizeof note, "%zu particles, %zu cells, %zu fragments (%zu overflow, %zu px in more than one chunk)",
                     st.particles, st.validCells, st.fragments, st.fragmentOverflow, st.truncatedPixels);
       const int particles = static_cast<int>(st.particles);
       auto row = [&](const std::string& stage, double seconds, const std::string& r, const std::string& n) {

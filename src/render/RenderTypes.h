@@ -140,7 +140,7 @@ struct RenderStats {
   std::size_t litParticles = 0;      // cloudscapes: particles the light-space passes took (in view or not)
   std::size_t fragments = 0;         // volume: fragments produced
   std::size_t fragmentOverflow = 0;  // volume: fragments alpha-blended for want of pool room
-  std::size_t truncatedPixels = 0;   // volume: pixels with more than kMaxSegmentsPerPixel segments
+  std::size_t truncatedPixels = 0;   // volume: pixels resolved in more than one chunk of kMaxSegmentsPerPixel
   std::size_t midListPixels = 0;     // volume: pixels with more than min(8, volumeShortList) segments
   std::size_t longListPixels = 0;    // volume: pixels with more than volumeShortList segments
   std::size_t resolveCutPixels = 0;  // volume: pixels whose resolve the GL cut short (VolumeResolve.h)

@@ -1,5 +1,7 @@
 #include "render/ShaderSources.h"
 
+#include <cstdio>
+
 #include <map>
 
 #include "render/EmbeddedShaders.h"
@@ -20,6 +22,14 @@ const std::string& embeddedShaderFile(const std::string& name) {
 
 std::string glslDefine(const std::string& name, long long value) {
   return "#define " + name + " " + std::to_string(value) + "\n";
+}
+
+std::string glslFloatDefine(const std::string& name, float value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", static_cast<double>(value));
+  std::string literal = text;
+  if (literal.find_first_of(".eEn") == std::string::npos) literal += ".0";  // a float literal, not an int
+  return "#define " + name + " " + literal + "\n";
 }
 
 std::string assembleShader(const std::vector<std::string>& files, const std::string& defines) {

@@ -93,7 +93,8 @@ VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
   sortedProgram(0);  // most frames with lists need the first stage; the others link on first use
   longProgram_ = linkComputeProgram(
       gl, {"volume_fragments.glsl", "volume_pieces.glsl", "loop_budget.glsl", "volume_resolve.comp.glsl"},
-      fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel));
+      fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel) +
+          glslFloatDefine("OPAQUE_TRANSMITTANCE", kOpaqueTransmittance));
 }
 
 VolumeResolve::~VolumeResolve() {

@@ -38,6 +38,12 @@
 // only one) and counts them apart (Counts::cutPixels, RenderStats::resolveCutPixels; the count
 // takes in every pixel of an invocation that ran out, so it may exceed the pixels harmed);
 // `render` warns. A GL without the limit never cuts.
+//
+// The chunked resolve stops once the chunks composited so far let through less than
+// kOpaqueTransmittance: what lies behind adds at most that share of its radiance, below a float's
+// rounding of the pixel. In a cloudscape nearly every list longer than a chunk is that opaque
+// after its first chunk, and its other walks of the list were most of the resolve's time
+// (docs/BENCHMARKS.md, "The chunked resolve stops at an opaque chunk").
 #include <array>
 #include <cstddef>
 #include <functional>
@@ -49,6 +55,11 @@
 #include "render/RenderTypes.h"
 
 namespace cloudlut::render {
+
+// The chunked resolve's stop: a pixel's transmittance in front of the chunks not yet taken
+// (dimensionless). Its farther segments then change no float of the pixel that matters: the
+// radiance they would add is at most this share of theirs.
+inline constexpr float kOpaqueTransmittance = 1e-7f;
 
 // Words (4 bytes) per fragment node: entry, exit, τ, radiance r, g, b, next.
 inline constexpr int kFragmentNodeWords = 7;
@@ -104,7 +115,7 @@ class VolumeResolve {
   struct Counts {
     std::size_t fragments = 0;        // produced
     std::size_t overflow = 0;         // alpha-blended for want of pool room
-    std::size_t truncatedPixels = 0;  // pixels with more than kMaxSegmentsPerPixel segments
+    std::size_t truncatedPixels = 0;  // pixels whose resolve took more than one chunk (not opaque after it)
     std::size_t midLists = 0;         // pixels with more than min(8, short list) segments (stage 2 on)
     std::size_t longLists = 0;        // pixels with more than the short list's segments (chunked)
     std::size_t cutPixels = 0;        // pixels whose resolve the GL cut short (loop budget; header)

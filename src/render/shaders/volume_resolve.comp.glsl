@@ -16,7 +16,7 @@
 // another program.
 //
 // Preceded by volume_fragments.glsl, volume_pieces.glsl, loop_budget.glsl and the defines of
-// render/VolumeResolve.cpp: MAX_SEGMENTS (kMaxSegmentsPerPixel).
+// render/VolumeResolve.cpp: MAX_SEGMENTS (kMaxSegmentsPerPixel), OPAQUE_TRANSMITTANCE (kOpaqueTransmittance).
 //
 // Order: the segments are taken in chunks of at most MAX_SEGMENTS, nearest first, in the total
 // order of compareKeys (entry distance, then the node's other words): the first chunk is the
@@ -25,7 +25,9 @@
 // between chunks is treated as one behind the other), then the fragments that found no room in
 // the node pool (accumulated by the particle pass into the colour image with plain alpha
 // blending). The result depends on the set of segments only, not on the order in which the
-// particle pass pushed them; a pixel with L segments walks its list ⌈L / MAX_SEGMENTS⌉ times.
+// particle pass pushed them; a pixel with L segments walks its list ⌈L / MAX_SEGMENTS⌉ times, or
+// fewer: once the chunks taken let through less than OPAQUE_TRANSMITTANCE (render/VolumeResolve.h,
+// kOpaqueTransmittance), the rest is not taken (it would add at most that share of its radiance).
 
 layout(local_size_x = 64) in;
 
@@ -171,6 +173,7 @@ void main() {
     boundA = seg_a[n - 1];
     boundNode = seg_node[n - 1];
     boundTaken = ties;
+    if (transmittance < OPAQUE_TRANSMITTANCE) break;  // what lies behind no longer shows
   }
   if (loopsWereCut()) atomicAdd(cutPixels, 1u);
   else if (chunks > 1) atomicAdd(truncatedPixels, 1u);
