@@ -392,3 +392,45 @@ TEST_CASE("render CLI: pixels of one particle reproduce `cloudlut query` for the
   CHECK(maxRadiance <= 0.01);
   CHECK(maxTransmittance <= 0.01);
 }
+
+TEST_CASE("render CLI: --sky-model picks the sky that lights the clouds; the atmosphere's own settings are refused",
+          "[render][cli]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts");
+  // the default cloudscape preset, whose sky is the atmosphere
+  const std::string base = "render --luts " + q(tmp / "luts") + " --width 48 --height 27 --terms ambient ";
+  for (const char* c : {"--sky-color 1,1,1", "--sky-below 0.1", "--sky-model atmosphere --sky-color 0,0,0",
+                        "--sky-model foggy"}) {
+    INFO(c);
+    const CliResult r = runCli(base + c + " --out " + q(tmp / "refused.exr"));
+    CHECK(r.exitCode == 2);
+    CHECK(lineCount(r.err) == 1);
+    CHECK(r.err.find("--sky-") != std::string::npos);
+    if (std::string(c).find("foggy") == std::string::npos) CHECK(r.err.find("--sky-model uniform") != std::string::npos);
+  }
+  CHECK_FALSE(fs::exists(tmp / "refused.exr"));
+  // Ambient alone: under the atmosphere the clouds take its sky's light; under a uniform black
+  // sky none.
+  const CliResult lit = runCli(base + "--out " + q(tmp / "atmosphere.exr"));
+  const CliResult dark = runCli(base + "--sky-model uniform --sky-color 0,0,0 --out " + q(tmp / "black.exr"));
+  REQUIRE(lit.exitCode == 0);
+  REQUIRE(dark.exitCode == 0);
+  int w = 0, h = 0;
+  const auto a = readExrChannels(tmp / "atmosphere.exr", {"R", "A"}, w, h);
+  const auto b = readExrChannels(tmp / "black.exr", {"R", "A"}, w, h);
+  double litSum = 0.0, darkSum = 0.0;
+  std::size_t cloud = 0;
+  for (std::size_t i = 0; i < a[0].size(); ++i) {
+    if (b[1][i] <= 0.01f) continue;
+    ++cloud;
+    litSum += a[0][i];
+    darkSum += std::abs(b[0][i]);
+  }
+  REQUIRE(cloud > 50);
+  CHECK(litSum > 0.01 * static_cast<double>(cloud));
+  CHECK(darkSum == 0.0);
+  // the ray marcher has only the uniform sky
+  const CliResult marched = runCli(renderArgs(tmp / "luts", kScene, tmp / "marched.png", "--method raymarch --sky-model atmosphere"));
+  CHECK(marched.exitCode == 2);
+  CHECK(marched.err.find("--sky-model") != std::string::npos);
+}

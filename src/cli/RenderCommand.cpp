@@ -86,6 +86,7 @@ int runRender(int argc, char** argv) {
     ("dump-particles", "cloudscapes: write every particle the grid generates around the camera (before frustum culling, level-of-detail fade in the density) as a particle scene FILE.json; --out optional", cxxopts::value<std::string>())
     ("quiet", "print nothing on success");
   addViewOptions(options);      // camera and light: cli/SceneOptions.h
+  addSkyModelOption(options);
   addDetailNoiseOption(options);
   addRayMarchOptions(options);  // --method raymarch: cli/SceneOptions.h
   cxxopts::ParseResult args;

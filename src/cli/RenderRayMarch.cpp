@@ -47,6 +47,8 @@ int runRayMarchRender(const cxxopts::ParseResult& args) {
   s.later = medium.later;
   s.unitOpticalRadius = static_cast<float>(medium.unitOpticalRadius());
   const scene::ViewSettings overrides = parseViewOverrides(args);
+  if (args.count("sky-model") && args["sky-model"].as<std::string>() != "uniform")
+    throw UsageError("--sky-model: the ray marcher lights by the uniform sky only (--sky-model uniform)");
   const scene::Scene scene = scene::readScene(args["particles"].as<std::string>());
   scene::checkRenderParticleCount(scene.particles.size(), args["particles"].as<std::string>(),
                                   scene::kMaxRayMarchParticles, "raymarch");

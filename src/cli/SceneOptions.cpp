@@ -15,7 +15,13 @@ DrawnScene loadDrawnScene(const cxxopts::ParseResult& args) {
   DrawnScene d;
   d.particles = args.count("particles") > 0;
   if (d.particles && args.count("scene")) throw UsageError("give either --particles or --scene, not both");
-  const scene::ViewSettings overrides = parseViewOverrides(args);
+  scene::ViewSettings overrides = parseViewOverrides(args);
+  if (args.count("sky-model")) {
+    const std::string model = args["sky-model"].as<std::string>();
+    if (model != "atmosphere" && model != "uniform")
+      throw UsageError("--sky-model: expected atmosphere or uniform, got '" + model + "'");
+    overrides.atmosphere = model == "atmosphere";
+  }
   if (d.particles) {
     d.scene = scene::readScene(args["particles"].as<std::string>());
     scene::checkRenderParticleCount(d.scene.particles.size(), args["particles"].as<std::string>());
@@ -27,11 +33,23 @@ DrawnScene loadDrawnScene(const cxxopts::ParseResult& args) {
     if (!d.scene.view.eye && !overrides.eye) d.scene.view.eye = glm::vec3(0.0f, 600.0f, 0.0f);
   }
   d.view = scene::resolveView(d.scene, overrides);
+  // Under the atmosphere the sky's radiance and the ground's return are its own (SkyPass::
+  // cloudLighting): options that set them would be silently dropped.
+  for (const char* option : {"sky-color", "sky-below"})
+    if (d.view.lighting.atmosphere && args.count(option))
+      throw UsageError(std::string("--") + option + ": the sky is the atmosphere here, which sets it; add " +
+                       "--sky-model uniform to light the clouds by a uniform sky");
   DetailNoise fallback = scene::defaultDetailNoise(d.scene.particles);
   if (!d.particles) fallback.scale = scene::kDefaultDetailScaleFraction * d.cloudscape.cloud.cellSize *
                                      d.cloudscape.cloud.particleSize.y;  // of the largest ring-0 particle
   d.detail = parseDetailNoise(args, d.particles ? d.scene.detail : d.cloudscape.detail, fallback);
   return d;
+}
+
+void addSkyModelOption(cxxopts::Options& options) {
+  options.add_options()("sky-model", "the sky that lights the clouds: atmosphere (the sun colour is the sunlight above "
+                        "it) or uniform (--sky-color, --sky-below) (default: the scene's; cloudscape presets: "
+                        "atmosphere)", cxxopts::value<std::string>());
 }
 
 void addDetailNoiseOption(cxxopts::Options& options) {

@@ -28,6 +28,11 @@ struct DrawnScene {
 };
 DrawnScene loadDrawnScene(const cxxopts::ParseResult& args);
 
+// --sky-model atmosphere|uniform: the sky that lights the drawn scene, over the scene's
+// "sky"."model" (cloudscape presets: the atmosphere). loadDrawnScene takes it, and refuses
+// --sky-color and --sky-below under the atmosphere, which sets both (UsageError naming them).
+void addSkyModelOption(cxxopts::Options& options);
+
 // --detail-noise off|on: the density's detail noise (seed §5.4, core/DetailNoise.h).
 void addDetailNoiseOption(cxxopts::Options& options);
 // The detail noise of `scene` as the command line asks: without the option, the scene's

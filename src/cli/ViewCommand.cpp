@@ -47,6 +47,7 @@ int runView(int argc, char** argv) {
     ("screenshot-dir", "where F12 writes cloudlut_NNNN.png", cxxopts::value<std::string>()->default_value("."))
     ("record", "write the flight as a camera path on exit (render it with cloudlut render --path FILE)", cxxopts::value<std::string>());
   addViewOptions(options);  // camera and light: cli/SceneOptions.h
+  addSkyModelOption(options);
   addDetailNoiseOption(options);
   cxxopts::ParseResult args;
   if (!parseOptions(options, argc, argv, args)) return kExitOk;
