@@ -64,7 +64,7 @@ int runRender(int argc, char** argv) {
     ("path", "render the frames of a camera path (cloudlut view --record; docs/SCENE_FORMAT.md) as OUT_0000.png ...; --frames N: its first N", cxxopts::value<std::string>())
     ("speed", "--frames: metres per frame", cxxopts::value<double>()->default_value("40"))
     ("yaw", "--frames: degrees of yaw per frame", cxxopts::value<double>()->default_value("0.2"))
-    ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel", cxxopts::value<int>()->default_value("16"))
+    ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel, the expected load that sizes the screen tiles (default: 16 for --particles, 32 for cloudscapes)", cxxopts::value<int>())
     ("volume-pool-mib", "volume blending: node pool budget of one screen tile in MiB (capped by the GL's storage block limit)", cxxopts::value<double>()->default_value("128"))
     ("no-occlusion", "constant sunlight (no light-space occlusion, no sun volume shadows)")
     ("box-proxies", "rasterise every particle as its bounding box, not the polygon around its outline seen from afar (the same image, more fragments: for timing)")
@@ -124,7 +124,9 @@ int runRender(int argc, char** argv) {
   settings.downscale = args["downscale"].as<int>();
   if (settings.downscale != 1 && settings.downscale != 2 && settings.downscale != 4)
     throw UsageError("--downscale: expected 1, 2 or 4");
-  settings.fragmentsPerPixel = args["fragments-per-pixel"].as<int>();
+  settings.fragmentsPerPixel = args.count("fragments-per-pixel") ? args["fragments-per-pixel"].as<int>()
+                                : particles ? render::kDefaultFragmentsPerPixel
+                                            : render::kCloudscapeFragmentsPerPixel;
   if (settings.fragmentsPerPixel < 1 || settings.fragmentsPerPixel > 1024)
     throw UsageError("--fragments-per-pixel: expected 1 to 1024");
   const double poolMiB = args["volume-pool-mib"].as<double>();

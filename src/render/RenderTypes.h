@@ -31,6 +31,13 @@ inline constexpr int kShortListCapacity = 32;
 // takes 4·2^r.
 inline constexpr std::array<int, 4> kSortedResolveSlots = {4, 8, 16, kShortListCapacity};
 inline constexpr int kDefaultFragmentsPerPixel = 16;
+// A cloudscape's: its lists are deep where the clouds crowd toward the horizon, and a screen tile
+// whose fragments overflow the pool is drawn again as two (VolumeResolve), its first draw's
+// shading lost. At 16 the default cloudscape at 1280×720 lost three tiles' draws of seven, at 32
+// one of eight: its frame 11.2–11.7 s → 7.8–8.3 s (docs/BENCHMARKS.md, "Screen tiles of a
+// cloudscape"). Explicit scenes keep 16: their lists are short, and eight tiles cost `cluster36`
+// about 5% against four.
+inline constexpr int kCloudscapeFragmentsPerPixel = 32;
 
 enum class BlendMode { Alpha, Volume };
 // "alpha" / "volume"; UsageError otherwise.
