@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -388,4 +390,6 @@ TEST_CASE("shader sources: a float define is a GLSL float literal that reads bac
     CHECK(literal.find_first_of(".eE") != std::string::npos);  // not an int literal
     CHECK(std::strtof(literal.c_str(), nullptr) == v);
   }
+  for (const float v : {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()})
+    CHECK_THROWS_AS(render::glslFloatDefine("X", v), std::invalid_argument);
 }

@@ -433,4 +433,22 @@ TEST_CASE("render CLI: --sky-model picks the sky that lights the clouds; the atm
   const CliResult marched = runCli(renderArgs(tmp / "luts", kScene, tmp / "marched.png", "--method raymarch --sky-model atmosphere"));
   CHECK(marched.exitCode == 2);
   CHECK(marched.err.find("--sky-model") != std::string::npos);
+  // nor the path tracer; a scene file's atmosphere sky is refused by both, naming the file's
+  // field, and --sky-model uniform lights it by its uniform sky
+  const fs::path atmosphereScene = tmp / "atmosphere-sky.json";
+  std::ofstream(atmosphereScene) << R"({"sky": {"model": "atmosphere"}, "particles": [{"center": [0, 0, 0], "radii": 1}]})";
+  const std::string small = " --width 8 --height 6 --quiet ";
+  const std::string traced = "reference scene --particles " + q(atmosphereScene) + small + "--spp 4 --out " + q(tmp / "t.exr");
+  for (const std::string& c : {renderArgs(tmp / "luts", atmosphereScene, tmp / "m.exr", "--method raymarch" + small), traced}) {
+    INFO(c);
+    const CliResult r = runCli(c);
+    CHECK(r.exitCode == 2);
+    CHECK(lineCount(r.err) == 1);
+    CHECK(r.err.find("atmosphere-sky.json: sky.model") != std::string::npos);
+    CHECK(r.err.find("--sky-model uniform") != std::string::npos);
+    CHECK(runCli(c + " --sky-model uniform").exitCode == 0);
+    CHECK(runCli(c + " --sky-model foggy").exitCode == 2);
+  }
+  CHECK(fs::exists(tmp / "m.exr"));
+  CHECK(fs::exists(tmp / "t.exr"));
 }

@@ -42,6 +42,7 @@ int runReferenceScene(int argc, char** argv) {
     ("threads", "worker threads (0 = all cores)", cxxopts::value<int>()->default_value("0"))
     ("quiet", "no progress bar, no summary");
   addViewOptions(options);
+  addSkyModelOption(options);  // uniform only: the path tracer has no atmosphere
   addDetailNoiseOption(options);
   addMediumOptions(options, true);
   cxxopts::ParseResult args;
@@ -67,9 +68,11 @@ int runReferenceScene(int argc, char** argv) {
   if (threadCount < 0) throw UsageError("--threads must be 0 (all cores) or positive");
   const auto threads = limitThreads(threadCount);
   const Medium medium = parseMedium(args);
-  const scene::ViewSettings overrides = parseViewOverrides(args);
+  scene::ViewSettings overrides = parseViewOverrides(args);
+  overrides.atmosphere = parseSkyModel(args);
   const scene::Scene scene = scene::readScene(args["particles"].as<std::string>());
   const scene::View view = scene::resolveView(scene, overrides);
+  requireUniformSky(view, args, args["particles"].as<std::string>(), "path tracer");
   const DetailNoise detail = parseDetailNoise(args, scene.detail, scene::defaultDetailNoise(scene.particles));
 
   const bool quiet = args.count("quiet") > 0;

@@ -46,13 +46,13 @@ int runRayMarchRender(const cxxopts::ParseResult& args) {
   s.first = medium.first;
   s.later = medium.later;
   s.unitOpticalRadius = static_cast<float>(medium.unitOpticalRadius());
-  const scene::ViewSettings overrides = parseViewOverrides(args);
-  if (args.count("sky-model") && args["sky-model"].as<std::string>() != "uniform")
-    throw UsageError("--sky-model: the ray marcher lights by the uniform sky only (--sky-model uniform)");
+  scene::ViewSettings overrides = parseViewOverrides(args);
+  overrides.atmosphere = parseSkyModel(args);
   const scene::Scene scene = scene::readScene(args["particles"].as<std::string>());
   scene::checkRenderParticleCount(scene.particles.size(), args["particles"].as<std::string>(),
                                   scene::kMaxRayMarchParticles, "raymarch");
   s.view = scene::resolveView(scene, overrides);
+  requireUniformSky(s.view, args, args["particles"].as<std::string>(), "ray marcher");
 
   const auto t0 = std::chrono::steady_clock::now();
   const ReferenceParticle particle(medium.model, medium.seed);

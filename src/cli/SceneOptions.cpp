@@ -16,12 +16,7 @@ DrawnScene loadDrawnScene(const cxxopts::ParseResult& args) {
   d.particles = args.count("particles") > 0;
   if (d.particles && args.count("scene")) throw UsageError("give either --particles or --scene, not both");
   scene::ViewSettings overrides = parseViewOverrides(args);
-  if (args.count("sky-model")) {
-    const std::string model = args["sky-model"].as<std::string>();
-    if (model != "atmosphere" && model != "uniform")
-      throw UsageError("--sky-model: expected atmosphere or uniform, got '" + model + "'");
-    overrides.atmosphere = model == "atmosphere";
-  }
+  overrides.atmosphere = parseSkyModel(args);
   if (d.particles) {
     d.scene = scene::readScene(args["particles"].as<std::string>());
     scene::checkRenderParticleCount(d.scene.particles.size(), args["particles"].as<std::string>());
@@ -50,6 +45,23 @@ void addSkyModelOption(cxxopts::Options& options) {
   options.add_options()("sky-model", "the sky that lights the clouds: atmosphere (the sun colour is the sunlight above "
                         "it) or uniform (--sky-color, --sky-below) (default: the scene's; cloudscape presets: "
                         "atmosphere)", cxxopts::value<std::string>());
+}
+
+std::optional<bool> parseSkyModel(const cxxopts::ParseResult& args) {
+  if (!args.count("sky-model")) return std::nullopt;
+  const std::string model = args["sky-model"].as<std::string>();
+  if (model != "atmosphere" && model != "uniform")
+    throw UsageError("--sky-model: expected atmosphere or uniform, got '" + model + "'");
+  return model == "atmosphere";
+}
+
+void requireUniformSky(const scene::View& view, const cxxopts::ParseResult& args, const std::string& sceneFile,
+                       const char* method) {
+  if (!view.lighting.atmosphere) return;
+  if (args.count("sky-model"))
+    throw UsageError(std::string("--sky-model atmosphere: the ") + method + " lights by a uniform sky only (--sky-model uniform)");
+  throw UsageError(sceneFile + ": sky.model is \"atmosphere\", and the " + method +
+                   " lights by a uniform sky only; add --sky-model uniform");
 }
 
 void addDetailNoiseOption(cxxopts::Options& options) {

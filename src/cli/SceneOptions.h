@@ -32,6 +32,14 @@ DrawnScene loadDrawnScene(const cxxopts::ParseResult& args);
 // "sky"."model" (cloudscape presets: the atmosphere). loadDrawnScene takes it, and refuses
 // --sky-color and --sky-below under the atmosphere, which sets both (UsageError naming them).
 void addSkyModelOption(cxxopts::Options& options);
+// The --sky-model value as "the sky is the atmosphere" (nullopt without the option); UsageError
+// naming --sky-model for any value but atmosphere or uniform.
+std::optional<bool> parseSkyModel(const cxxopts::ParseResult& args);
+// For the methods that have only the uniform sky (the ray marcher, the path tracer): UsageError
+// when `view` is lit by the atmosphere, naming where that came from (--sky-model, or the
+// "sky"."model" of `sceneFile`) and --sky-model uniform, which lights it by a uniform sky.
+void requireUniformSky(const scene::View& view, const cxxopts::ParseResult& args, const std::string& sceneFile,
+                       const char* method);
 
 // --detail-noise off|on: the density's detail noise (seed §5.4, core/DetailNoise.h).
 void addDetailNoiseOption(cxxopts::Options& options);

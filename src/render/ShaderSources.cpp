@@ -1,8 +1,10 @@
 #include "render/ShaderSources.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include <map>
+#include <stdexcept>
 
 #include "render/EmbeddedShaders.h"
 #include "render/GlContext.h"
@@ -25,10 +27,12 @@ std::string glslDefine(const std::string& name, long long value) {
 }
 
 std::string glslFloatDefine(const std::string& name, float value) {
+  // GLSL has no literal for an infinity or a NaN
+  if (!std::isfinite(value)) throw std::invalid_argument("glslFloatDefine: " + name + " is not finite");
   char text[32];
   std::snprintf(text, sizeof text, "%.9g", static_cast<double>(value));
   std::string literal = text;
-  if (literal.find_first_of(".eEn") == std::string::npos) literal += ".0";  // a float literal, not an int
+  if (literal.find_first_of(".eE") == std::string::npos) literal += ".0";  // a float literal, not an int
   return "#define " + name + " " + literal + "\n";
 }
 

@@ -15,7 +15,8 @@ const std::string& embeddedShaderFile(const std::string& name);
 
 // "#define NAME VALUE\n": a constant that C++ and GLSL share, injected by the C++ that owns it.
 std::string glslDefine(const std::string& name, long long value);
-// The same for a float, written so that GLSL reads back the same float (9 significant digits).
+// The same for a float, written so that GLSL reads back the same float (9 significant digits);
+// std::invalid_argument for a value that is not finite, which GLSL cannot write.
 std::string glslFloatDefine(const std::string& name, float value);
 
 // A complete program source from embedded files, after `defines` (e.g. glslDefine("STAGE", 1)).
