@@ -388,6 +388,9 @@ TEST_CASE("cloudscape CLI: default scene, presets, frames, and bad input", "[clo
   CHECK(r.exitCode == 2);
   r = runCli(base + "--downscale 3" + out);
   CHECK(r.exitCode == 2);
+  r = runCli(base + "--tile-plan exact" + out);
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("--tile-plan") != std::string::npos);
   {
     std::ofstream f(tmp / "bad.json");
     f << R"({"coverage": 2, "density": 1, "cloud_base_m": 1000, "cloud_top_m": 2000})";

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "render/GlContext.h"
 #include "render/Renderer.h"
@@ -53,6 +54,54 @@ TEST_CASE("volume tiles: every tile's pool fits the budget and the tiles cover t
   // The seed's Table 1 buffer (960×540 at 16 fragments) needs 221 MiB: two tiles of 128 MiB.
   CHECK(planVolumeTiles(960, 540, 16, 128.0 * 1048576.0).count() == 2);
   CHECK_THROWS(planVolumeTiles(64, 64, 1024, 1000.0));
+}
+
+TEST_CASE("volume tiles: bands planned from counted rows are valid and as few as any partition allows",
+          "[render][volume]") {
+  // The fewest runs of rows that keep each run within the capacity and the row limit, by
+  // dynamic programming over every cut (independent of the greedy plan); a row over the
+  // capacity on its own counts as a run.
+  auto fewestRuns = [](const std::vector<double>& rows, double capacity, int maxRows) {
+    const int n = static_cast<int>(rows.size());
+    std::vector<int> best(static_cast<std::size_t>(n) + 1, 1 << 30);
+    best[0] = 0;
+    for (int end = 1; end <= n; ++end) {
+      double load = 0;
+      for (int first = end - 1; first >= 0 && end - first <= maxRows; --first) {
+        load += rows[static_cast<std::size_t>(first)];
+        if (load > capacity && end - first > 1) break;
+        best[static_cast<std::size_t>(end)] =
+            std::min(best[static_cast<std::size_t>(end)], best[static_cast<std::size_t>(first)] + 1);
+      }
+    }
+    return best[static_cast<std::size_t>(n)];
+  };
+  unsigned state = 12345u;
+  auto next = [&state] { return (state = state * 1664525u + 1013904223u) >> 8; };
+  for (int trial = 0; trial < 200; ++trial) {
+    const int width = 1 + static_cast<int>(next() % 50), height = 1 + static_cast<int>(next() % 60);
+    std::vector<double> rows(static_cast<std::size_t>(height));
+    for (double& r : rows) r = (next() % 4 == 0) ? 0.0 : static_cast<double>(next() % 400);  // empty rows too
+    const double capacity = 50.0 + static_cast<double>(next() % 900);
+    const std::size_t maxPixels = static_cast<std::size_t>(width) * (1 + next() % 20);
+    INFO("trial " << trial << ": " << width << "x" << height << ", capacity " << capacity << ", max pixels " << maxPixels);
+    const std::vector<VolumeBand> bands = planVolumeBands(rows, width, capacity, maxPixels);
+    int expectFirst = 0;
+    for (const VolumeBand& b : bands) {
+      REQUIRE(b.first == expectFirst);  // contiguous, in order, none empty
+      REQUIRE(b.end > b.first);
+      expectFirst = b.end;
+      double load = 0;
+      for (int y = b.first; y < b.end; ++y) load += rows[static_cast<std::size_t>(y)];
+      if (b.end - b.first > 1) {
+        CHECK(load <= capacity);
+        CHECK(static_cast<std::size_t>(width) * static_cast<std::size_t>(b.end - b.first) <= maxPixels);
+      }
+    }
+    CHECK(expectFirst == height);  // every row once
+    CHECK(static_cast<int>(bands.size()) ==
+          fewestRuns(rows, capacity, static_cast<int>(maxPixels / static_cast<std::size_t>(width))));
+  }
 }
 
 TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overlap", "[render][volume]") {
@@ -102,6 +151,30 @@ TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overla
     CHECK(maxDiff <= 1e-4);
     CHECK(distanceMismatch == 0);
   }
+
+  // The last plan again, from the fragments counted first: the count is the particle pass's own
+  // to the fragment, so no band overflows, and the bands are as few as the pool allows.
+  s.tilePlan = VolumeTilePlan::Counted;
+  RenderStats counted;
+  const Image image = renderer.render(scene.particles, s, &counted);
+  const double capacity = std::floor((static_cast<double>(s.volumePoolBytes) - 16.0) / 28.0);
+  std::printf("[volume tiles] counted plan: %zu bands (%zu split), %zu fragments counted, %zu stored, pool of %.0f nodes\n",
+              counted.volumeTiles, counted.volumeRedrawnTiles, counted.countedFragments, counted.fragments, capacity);
+  CHECK(counted.countedFragments == whole.fragments);
+  CHECK(counted.fragments == whole.fragments);
+  CHECK(counted.volumeRedrawnTiles == 0);
+  CHECK(counted.fragmentOverflow == 0);
+  CHECK(static_cast<double>(counted.volumeTiles) >= std::ceil(static_cast<double>(whole.fragments) / capacity));
+  double maxDiff = 0;
+  for (std::size_t i = 0; i < image.rgba.size(); ++i)
+    maxDiff = std::max(maxDiff, double(std::abs(image.rgba[i] - reference.rgba[i])));
+  CHECK(maxDiff <= 1e-4);
+  // an explicit scene under the automatic plan keeps the expected load's tiles
+  s.tilePlan = VolumeTilePlan::Auto;
+  RenderStats automatic;
+  renderer.render(scene.particles, s, &automatic);
+  CHECK(automatic.countedFragments == 0);
+  CHECK(automatic.volumeRedrawnTiles > 0);
 }
 
 TEST_CASE("volume tiles: a 1920x1080 volume render fits the GL's storage block limit", "[render][volume]") {

@@ -64,7 +64,9 @@ int runRender(int argc, char** argv) {
     ("path", "render the frames of a camera path (cloudlut view --record; docs/SCENE_FORMAT.md) as OUT_0000.png ...; --frames N: its first N", cxxopts::value<std::string>())
     ("speed", "--frames: metres per frame", cxxopts::value<double>()->default_value("40"))
     ("yaw", "--frames: degrees of yaw per frame", cxxopts::value<double>()->default_value("0.2"))
-    ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel, the expected load that sizes the screen tiles (default: 16 for --particles, 32 for cloudscapes)", cxxopts::value<int>())
+    ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel, the expected load that sizes the screen tiles", cxxopts::value<int>()->default_value("16"))
+    ("tile-plan", "volume blending: plan the screen tiles from the expected load (expected) or from the fragments counted "
+     "first (counted); auto counts for cloudscapes", cxxopts::value<std::string>()->default_value("auto"))
     ("volume-pool-mib", "volume blending: node pool budget of one screen tile in MiB (capped by the GL's storage block limit)", cxxopts::value<double>()->default_value("128"))
     ("no-occlusion", "constant sunlight (no light-space occlusion, no sun volume shadows)")
     ("box-proxies", "rasterise every particle as its bounding box, not the polygon around its outline seen from afar (the same image, more fragments: for timing)")
@@ -124,11 +126,10 @@ int runRender(int argc, char** argv) {
   settings.downscale = args["downscale"].as<int>();
   if (settings.downscale != 1 && settings.downscale != 2 && settings.downscale != 4)
     throw UsageError("--downscale: expected 1, 2 or 4");
-  settings.fragmentsPerPixel = args.count("fragments-per-pixel") ? args["fragments-per-pixel"].as<int>()
-                                : particles ? render::kDefaultFragmentsPerPixel
-                                            : render::kCloudscapeFragmentsPerPixel;
+  settings.fragmentsPerPixel = args["fragments-per-pixel"].as<int>();
   if (settings.fragmentsPerPixel < 1 || settings.fragmentsPerPixel > 1024)
     throw UsageError("--fragments-per-pixel: expected 1 to 1024");
+  settings.tilePlan = render::parseVolumeTilePlan(args["tile-plan"].as<std::string>());
   const double poolMiB = args["volume-pool-mib"].as<double>();
   if (!std::isfinite(poolMiB) || poolMiB <= 0 || poolMiB > 1048576)
     throw UsageError("--volume-pool-mib: expected a positive number of MiB up to 1048576");
@@ -230,10 +231,11 @@ int runRender(int argc, char** argv) {
       if (settings.downscale > 1)
         std::printf("  particles at 1/%d resolution, upscale %.1f ms\n", settings.downscale, 1e3 * stats.upscaleSeconds);
       if (settings.blend == render::BlendMode::Volume)
-        std::printf("  volume blending: %zu tile(s) (%zu split for the fragment load), pool %.1f MiB, %zu fragments, "
+        std::printf("  volume blending: %zu tile(s) (%s; %zu split for the fragment load), pool %.1f MiB, %zu fragments, "
                     "%zu overflowed (alpha-blended), %zu pixels over %d segments, %zu over %d (chunked), %zu over %d "
                     "(resolved in more than one chunk), resolve %.1f ms\n",
-                    stats.volumeTiles, stats.volumeRedrawnTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0,
+                    stats.volumeTiles, stats.countedFragments > 0 ? "planned from the counted fragments" : "planned from the expected load",
+                    stats.volumeRedrawnTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0,
                     stats.fragments, stats.fragmentOverflow, stats.midListPixels,
                     std::min(render::kSortedResolveSlots[1], settings.volumeShortList), stats.longListPixels, settings.volumeShortList, stats.truncatedPixels, render::kMaxSegmentsPerPixel,
                     1e3 * stats.resolveSeconds);

@@ -18,10 +18,12 @@ namespace {
 const std::vector<std::string> kVertexFiles = {"particle_common.glsl", "particle.vert.glsl"};
 const std::vector<std::string> kFragmentFiles = {
     "cloudlut_geometry.glsl", "cloudlut_phase.glsl", "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
-    "particle_common.glsl", "volume_fragments.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
+    "particle_common.glsl", "particle_chord.glsl", "volume_fragments.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
     "sun_chord_map.glsl", "cascade_columns.glsl", "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
     "diffusion_sampling.glsl",
     "cloudlut_detail_noise.glsl", "particle_detail.glsl", "particle.frag.glsl"};
+const std::vector<std::string> kCountFragmentFiles = {"particle_common.glsl", "particle_chord.glsl",
+                                                     "particle_count.frag.glsl"};
 constexpr GLsizei kProxyVertices = 36;  // the box's 6 faces × 2 triangles, or the polygon's fan (particle.vert.glsl)
 constexpr int kSunVolumeUnit = 3;      // texture unit after the three tables (ShadingTables)
 constexpr int kZenithVolumeUnit = 4;
@@ -57,6 +59,44 @@ const GlProgram& ParticlePass::programFor(const std::string& defines) {
   return programs_.emplace(defines, std::move(program)).first->second;
 }
 
+void ParticlePass::bindProxies(const ProgramUniforms& uniforms, bool useOrder, float farPlane, int width, int height,
+                               const RenderSettings& s) {
+  const scene::CameraFrame frame(s.view.camera, width, height);
+  const float nearPlane = farPlane * 1e-6f;
+  uniforms.set("uViewProjection", frame.projectionMatrix(nearPlane, farPlane) * frame.viewMatrix());
+  uniforms.set("uEye", frame.eye());
+  uniforms.set("uNearPlane", nearPlane);
+  uniforms.set("uOutlinePolygons", s.outlinePolygons ? 1 : 0);
+  uniforms.set("uUseOrder", useOrder ? 1 : 0);
+  buffers_.records.bind(ParticleBuffers::kRecordsBinding);
+  if (buffers_.sortKeys.bytes() == 0) buffers_.sortKeys.ensure(64);
+  buffers_.sortKeys.bind(ParticleBuffers::kSortKeysBinding);
+  gl_.BindVertexArray(vao_);
+}
+
+void ParticlePass::countFragments(std::size_t count, bool useOrder, float farPlane, int width, int height,
+                                  const RenderSettings& s) {
+  if (!countProgram_.id()) {
+    countProgram_ = linkDrawProgram(gl_, kVertexFiles, kCountFragmentFiles, "", "particle count");
+    requireParticleRecordLayout(gl_, countProgram_.id(), "particle count program");
+  }
+  gl_.Disable(GL_DEPTH_TEST);
+  gl_.Enable(GL_CULL_FACE);
+  gl_.FrontFace(GL_CCW);
+  gl_.CullFace(GL_FRONT);
+  gl_.Enable(GL_BLEND);
+  gl_.BlendEquationi(0, GL_FUNC_ADD);
+  gl_.BlendFuncSeparatei(0, GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  gl_.BlendEquationi(1, GL_MIN);
+  gl_.UseProgram(countProgram_.id());
+  const ProgramUniforms uniforms(gl_, countProgram_.id());
+  uniforms.set("uNoDistance", kNoDistance);
+  bindProxies(uniforms, useOrder, farPlane, width, height, s);
+  if (count > 0) gl_.DrawArraysInstanced(GL_TRIANGLES, 0, kProxyVertices, static_cast<GLsizei>(count));
+  gl_.Finish();
+  checkGlError(gl_, "counting the particles' fragments");
+}
+
 void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
                         const RenderSettings& s, const SunVolume& sun, bool sunBuilt, const SunVolume& zenith,
                         bool zenithBuilt, const DiffusionVolume& diffusion) {
@@ -74,12 +114,7 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   const GlProgram& program = programFor(configurationDefines(s, volume, sunBuilt, fromMap));
   gl_.UseProgram(program.id());
   const ProgramUniforms uniforms(gl_, program.id());
-  const scene::CameraFrame frame(s.view.camera, width, height);
-  const float nearPlane = farPlane * 1e-6f;
-  uniforms.set("uViewProjection", frame.projectionMatrix(nearPlane, farPlane) * frame.viewMatrix());
-  uniforms.set("uEye", frame.eye());
-  uniforms.set("uNearPlane", nearPlane);
-  uniforms.set("uOutlinePolygons", s.outlinePolygons ? 1 : 0);
+  bindProxies(uniforms, useOrder, farPlane, width, height, s);
   const scene::Lighting& light = s.view.lighting;
   uniforms.set("uSunDirection", glm::normalize(light.sunDirection));
   uniforms.set("uSunColor", light.sunColor);
@@ -88,7 +123,6 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   tables_.bind(uniforms);
   uniforms.set("uMinOpacityForDistance", kMinOpacityForDistance);
   uniforms.set("uNoDistance", kNoDistance);
-  uniforms.set("uUseOrder", useOrder ? 1 : 0);
   uniforms.set("uDetailNoise", s.detail.packed());
   sun.bind(uniforms, kSunVolumeUnit);
   sun.bindChordMap();
@@ -98,11 +132,6 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   diffusion.bind(uniforms, kDiffusionUnit);
   uniforms.set("uDiffusionShare", s.diffusionShare);
   uniforms.set("uDiffusionGain", s.diffusionGain);
-  buffers_.records.bind(ParticleBuffers::kRecordsBinding);
-  if (buffers_.sortKeys.bytes() == 0) buffers_.sortKeys.ensure(64);
-  buffers_.sortKeys.bind(ParticleBuffers::kSortKeysBinding);
-
-  gl_.BindVertexArray(vao_);
   if (count > 0) gl_.DrawArraysInstanced(GL_TRIANGLES, 0, kProxyVertices, static_cast<GLsizei>(count));
   gl_.Finish();
   checkGlError(gl_, "rendering the particles");

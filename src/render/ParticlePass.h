@@ -49,7 +49,18 @@ class ParticlePass {
             const RenderSettings& settings, const SunVolume& sun, bool sunBuilt, const SunVolume& zenith,
             bool zenithBuilt, const DiffusionVolume& diffusion);
 
+  // The fragments `draw` would store, counted per pixel: the same proxies and the same ray test
+  // (shaders/particle_chord.glsl), each fragment adding 1 to the red channel of the bound
+  // target's colour attachment (blended ONE/ONE; clear it to 0 first), the distance attachment
+  // left as it was. Volume-aware blending plans its tiles from them (VolumeResolve::planBands).
+  // Waits for the GPU.
+  void countFragments(std::size_t count, bool useOrder, float farPlane, int width, int height,
+                      const RenderSettings& settings);
+
  private:
+  // The proxies' vertex-stage uniforms (particle.vert.glsl) and buffers, and the vertex array.
+  void bindProxies(const ProgramUniforms& uniforms, bool useOrder, float farPlane, int width, int height,
+                   const RenderSettings& settings);
   // The particle program compiled for one configuration (particle.frag.glsl's PARTICLE_*
   // #defines, e.g. "PARTICLE_LIGHTING 1"; SUN_CHORD_MAP 1 to read the sun volume's chord map,
   // 0 to compute the chords), linked when first asked for and kept.
@@ -59,6 +70,7 @@ class ParticlePass {
   ParticleBuffers& buffers_;
   ShadingTables tables_;
   std::map<std::string, GlProgram> programs_;  // by their #defines
+  GlProgram countProgram_;                      // countFragments', linked on first use
   GLuint vao_ = 0;
 };
 

@@ -22,6 +22,13 @@ BlendMode parseBlendMode(const std::string& text) {
   throw UsageError("--blend: expected alpha or volume, got '" + text + "'");
 }
 
+VolumeTilePlan parseVolumeTilePlan(const std::string& text) {
+  if (text == "auto") return VolumeTilePlan::Auto;
+  if (text == "counted") return VolumeTilePlan::Counted;
+  if (text == "expected") return VolumeTilePlan::Expected;
+  throw UsageError("--tile-plan: expected auto, counted or expected, got '" + text + "'");
+}
+
 const char* toString(BlendMode mode) { return mode == BlendMode::Volume ? "volume" : "alpha"; }
 
 LightingModel parseLighting(const std::string& text, const std::string& option) {

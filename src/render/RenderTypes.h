@@ -31,13 +31,17 @@ inline constexpr int kShortListCapacity = 32;
 // takes 4·2^r.
 inline constexpr std::array<int, 4> kSortedResolveSlots = {4, 8, 16, kShortListCapacity};
 inline constexpr int kDefaultFragmentsPerPixel = 16;
-// A cloudscape's: its lists are deep where the clouds crowd toward the horizon, and a screen tile
-// whose fragments overflow the pool is drawn again as two (VolumeResolve), its first draw's
-// shading lost. At 16 the default cloudscape at 1280×720 lost three tiles' draws of seven, at 32
-// one of eight: its frame 11.2–11.7 s → 7.8–8.3 s (docs/BENCHMARKS.md, "Screen tiles of a
-// cloudscape"). Explicit scenes keep 16: their lists are short, and eight tiles cost `cluster36`
-// about 5% against four.
-inline constexpr int kCloudscapeFragmentsPerPixel = 32;
+
+// How volume-aware blending plans its screen tiles when the expected load (fragmentsPerPixel)
+// needs more than one (render/VolumeResolve.h): from that load alone (Expected), or from the
+// fragments counted first (Counted: a cheap pass of the particles' proxies and ray test, about a
+// tenth of the particle pass's time, after which no tile overflows). Auto counts for generated
+// cloudscapes, whose fragments crowd toward the horizon, so that the expected load's tiles
+// overflow there and their first draws are shaded for nothing; explicit particle lists keep the
+// expected plan, which they seldom overflow (docs/BENCHMARKS.md, "Screen tiles of a cloudscape").
+enum class VolumeTilePlan { Auto, Counted, Expected };
+// "auto" / "counted" / "expected"; UsageError otherwise.
+VolumeTilePlan parseVolumeTilePlan(const std::string& text);
 
 enum class BlendMode { Alpha, Volume };
 // "alpha" / "volume"; UsageError otherwise.
@@ -74,6 +78,7 @@ struct RenderSettings {
   bool smoothOcclusion = true;  // its density-weighted smoothing pass
   int fragmentsPerPixel = kDefaultFragmentsPerPixel;  // volume: node pool size per low-res pixel
   long double volumePoolBytes = 0;  // volume: budget of one tile's node pool (0: the default; VolumeResolve.h)
+  VolumeTilePlan tilePlan = VolumeTilePlan::Auto;  // volume: how the screen tiles are planned
   // volume: the longest list resolved by a sorting network, 0 … kShortListCapacity
   // (VolumeResolve.h; the image is the same up to rounding whatever it is, only the time changes)
   int volumeShortList = kShortListCapacity;
@@ -153,6 +158,7 @@ struct RenderStats {
   std::size_t resolveCutPixels = 0;  // volume: pixels whose resolve the GL cut short (VolumeResolve.h)
   std::size_t volumeTiles = 0;       // volume: screen tiles, each drawn and resolved on its own
   std::size_t volumeRedrawnTiles = 0;  // volume: tiles over the pool's room, undone and split in two
+  std::size_t countedFragments = 0;  // volume: fragments counted to plan the tiles (0: not counted; VolumeTilePlan)
   std::size_t volumePoolBytes = 0;   // volume: bytes of the node pool (one tile's)
   std::size_t tileOverflow = 0;      // occlusion: cover-bin entries dropped (render/LightOcclusion.h)
   std::size_t sunFootprintOverflow = 0;  // sun volume: particle-cascade pairs left to a coarser cascade

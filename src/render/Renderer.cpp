@@ -167,7 +167,9 @@ struct Renderer::Impl {
   }
 
   // Shading and blending at 1/downscale resolution, the volume resolve, the upscale, read-back.
-  Image draw(std::size_t count, bool useOrder, float farPlane, const RenderSettings& s, Built built, RenderStats* stats) {
+  // `cloudscape`: generated (VolumeTilePlan::Auto counts its fragments for the tiles' plan).
+  Image draw(std::size_t count, bool useOrder, float farPlane, const RenderSettings& s, Built built, bool cloudscape,
+             RenderStats* stats) {
     const bool sun = built.sun;
     const int w = (s.width + s.downscale - 1) / s.downscale, h = (s.height + s.downscale - 1) / s.downscale;
     requireTargetSize(w, h, s);
@@ -189,6 +191,13 @@ struct Renderer::Impl {
     gl.ClearBufferfv(GL_COLOR, 1, clearDistance);
 
     const Stopwatch drawClock;
+    const bool counted = s.tilePlan == VolumeTilePlan::Counted || (s.tilePlan == VolumeTilePlan::Auto && cloudscape);
+    if (blendVolume && counted && volume.tiling().count() > 1) {
+      // More than one tile: plan them from the fragments themselves (VolumeResolve::planBands).
+      particles.countFragments(count, useOrder, farPlane, w, h, s);
+      volume.planBands(target->colourTexture());
+      gl.ClearBufferfv(GL_COLOR, 0, clearColour);
+    }
     if (blendVolume) {
       volume.run(target->colourTexture(),
                  [&] { particles.draw(count, useOrder, true, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith, diffusion); });
@@ -203,6 +212,7 @@ struct Renderer::Impl {
         stats->resolveSeconds = volume.resolveSeconds();
         stats->volumeTiles = c.tiles;
         stats->volumeRedrawnTiles = c.redrawnTiles;
+        stats->countedFragments = c.countedFragments;
         stats->volumePoolBytes = volume.tiling().poolBytes;
       }
     } else {
@@ -249,7 +259,7 @@ struct Renderer::Impl {
     const Built built = illuminate(list.size(), needsSunVolume(lit) ? sunGridFor(list, lit) : SunVolumeGrid{},
                                    needsZenithVolume(lit) ? zenithGridFor(list, lit) : SunVolumeGrid{}, lit, stats,
                                    diffusionGridFor(list, lit));
-    return draw(list.size(), false, farPlane, lit, built, stats);
+    return draw(list.size(), false, farPlane, lit, built, false, stats);
   }
 
   Image renderCloudscape(const scene::CloudType& cloud, const scene::QualityPreset& q, const RenderSettings& s,
@@ -268,7 +278,7 @@ struct Renderer::Impl {
     const Built built = illuminate(g.count, needsSunVolume(lit) ? sunGridFor(cloud, q, lit) : SunVolumeGrid{},
                                    needsZenithVolume(lit) ? zenithGridFor(cloud, q, lit) : SunVolumeGrid{}, lit, stats,
                                    diffusionGridFor(cloud, q, lit));
-    return draw(g.visible, true, g.farPlane, lit, built, stats);  // the keys index the particles in view
+    return draw(g.visible, true, g.farPlane, lit, built, true, stats);  // the keys index the particles in view
   }
 
   // --- atmosphere (issue 13): the sky pass, and the settings whose sun colour and ambient the

@@ -13,7 +13,7 @@ namespace cloudlut::render {
 
 namespace {
 
-constexpr GLuint kPoolBinding = 2, kCutBinding = 3, kPixelListsBinding = 4;
+constexpr GLuint kPoolBinding = 2, kCutBinding = 3, kPixelListsBinding = 4, kRowCountsBinding = 5;
 constexpr unsigned kResolveGroup = 64;  // the resolves' local_size_x
 // PixelLists (volume_fragments.glsl): a count per region and the capacity; then the regions of
 // capacity pixel words: the listed pixels, one per sorted resolve, and the chunked resolve's.
@@ -84,8 +84,25 @@ VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long 
   return t;
 }
 
+std::vector<VolumeBand> planVolumeBands(const std::vector<double>& rowFragments, int width, double capacity,
+                                        std::size_t maxPixels) {
+  const int maxRows = std::max(1, static_cast<int>(std::min<std::size_t>(maxPixels / static_cast<std::size_t>(width),
+                                                                         rowFragments.size())));
+  std::vector<VolumeBand> bands;
+  const int rows = static_cast<int>(rowFragments.size());
+  for (int first = 0; first < rows;) {
+    int end = first + 1;
+    double load = rowFragments[static_cast<std::size_t>(first)];
+    while (end < rows && end - first < maxRows && load + rowFragments[static_cast<std::size_t>(end)] <= capacity)
+      load += rowFragments[static_cast<std::size_t>(end++)];
+    bands.push_back({first, end});
+    first = end;
+  }
+  return bands;
+}
+
 VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
-    : gl_(gl), budget_(budget), pool_(gl), cut_(gl), pixelLists_(gl) {
+    : gl_(gl), budget_(budget), pool_(gl), cut_(gl), pixelLists_(gl), rowCounts_(gl) {
   singleProgram_ = linkComputeProgram(
       gl, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_single.comp.glsl"},
       fragmentDefines() + glslDefine("STAGES", static_cast<int>(kSortedResolveSlots.size())) +
@@ -114,9 +131,14 @@ VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel
   budget_.require(static_cast<long double>(tiling_.poolBytes),
                   "volume blending of a " + std::to_string(tiling_.tileWidth) + "x" + std::to_string(tiling_.tileHeight) +
                       " tile with " + std::to_string(fragmentsPerPixel) + " fragments per pixel");
-  pool_.ensure(tiling_.poolBytes);
-  // A word per pixel of a tile and region (four sevenths of a pool that holds one node per pixel).
-  pixelLists_.ensure(4 * (kPixelListHeaderWords + kPixelListRegions * tilePixels()));
+  budgetBytes_ = budget;
+  tiles_.clear();
+  for (int row = 0; row < tiling_.rows; ++row)
+    for (int column = 0; column < tiling_.columns; ++column) {
+      const int x0 = column * tiling_.tileWidth, y0 = row * tiling_.tileHeight;
+      tiles_.push_back({x0, y0, std::min(x0 + tiling_.tileWidth, width), std::min(y0 + tiling_.tileHeight, height)});
+    }
+  tilePixels_ = static_cast<std::size_t>(tiling_.tileWidth) * static_cast<std::size_t>(tiling_.tileHeight);
   shortList_ = shortList;
   if (!heads_ || width != width_ || height != height_) {
     if (heads_) gl_.DeleteTextures(1, &heads_);
@@ -133,29 +155,55 @@ VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel
   return tiling_;
 }
 
+void VolumeResolve::planBands(GLuint countTexture) {
+  // the rows' sums on the GPU (volume_row_counts.comp.glsl): a read-back of the whole texture
+  // took about 60 ms at 1280×720 on llvmpipe
+  if (!rowCountsProgram_.id()) rowCountsProgram_ = linkComputeProgram(gl_, {"volume_row_counts.comp.glsl"}, "");
+  rowCounts_.ensure(4 * static_cast<std::size_t>(height_));
+  fullBarrier(gl_);
+  gl_.UseProgram(rowCountsProgram_.id());
+  gl_.BindImageTexture(kColourUnit, countTexture, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+  rowCounts_.bind(kRowCountsBinding);
+  gl_.DispatchCompute(groupsFor(static_cast<std::size_t>(height_), kResolveGroup), 1, 1);
+  fullBarrier(gl_);
+  std::vector<GLuint> counted(static_cast<std::size_t>(height_));
+  rowCounts_.read(0, 4 * counted.size(), counted.data());
+  const std::vector<double> rows(counted.begin(), counted.end());
+  counts_.countedFragments = 0;
+  for (const GLuint c : counted) counts_.countedFragments += c;
+  const std::size_t nodes = static_cast<std::size_t>((budgetBytes_ - 4.0L * kCounterWords) / kNodeBytes);
+  const std::size_t listWords = static_cast<std::size_t>(budget_.limitBytes() / 4.0L) - kPixelListHeaderWords;
+  const std::vector<VolumeBand> bands =
+      planVolumeBands(rows, width_, static_cast<double>(nodes) * (1.0 - kBandHeadroom), listWords / kPixelListRegions);
+  tiles_.clear();
+  tilePixels_ = 0;
+  for (const VolumeBand& b : bands) {
+    tiles_.push_back({0, b.first, width_, b.end});
+    tilePixels_ = std::max(tilePixels_, static_cast<std::size_t>(width_) * static_cast<std::size_t>(b.end - b.first));
+  }
+  tiling_.poolBytes = 4 * kCounterWords + kNodeBytes * nodes;
+}
+
 void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawTile) {
+  // sized here, once the plan is final (prepare's, or planBands'), so that a frame does not
+  // reallocate them twice
+  pool_.ensure(tiling_.poolBytes);
+  // A word per pixel of a tile and region (four sevenths of a pool that holds one node per pixel).
+  pixelLists_.ensure(4 * (kPixelListHeaderWords + kPixelListRegions * tilePixels_));
   const std::size_t capacity = (tiling_.poolBytes - 4 * kCounterWords) / kNodeBytes;
-  // The plan's tiles in row-major order, as a stack (last = next). A tile whose fragments did
-  // not all find room in the pool is drawn again as two halves along its longer side, until
-  // each part fits or is one pixel: the pool's capacity per tile is fixed, so halving the
-  // pixels doubles the room per pixel. The order of the splits depends only on the counts, so
-  // the image is the same whatever the thread count.
-  struct Rect {
-    int x0, y0, x1, y1;
-  };
-  std::vector<Rect> pending;
-  for (int row = tiling_.rows - 1; row >= 0; --row)
-    for (int column = tiling_.columns - 1; column >= 0; --column) {
-      const int x0 = column * tiling_.tileWidth, y0 = row * tiling_.tileHeight;
-      pending.push_back({x0, y0, std::min(x0 + tiling_.tileWidth, width_), std::min(y0 + tiling_.tileHeight, height_)});
-    }
+  // The plan's tiles in order, as a stack (last = next). A tile whose fragments did not all find
+  // room in the pool is drawn again as two halves along its longer side, until each part fits or
+  // is one pixel: the pool's capacity per tile is fixed, so halving the pixels doubles the room
+  // per pixel. The order of the splits depends only on the counts, so the image is the same
+  // whatever the thread count.
+  std::vector<Rect> pending(tiles_.rbegin(), tiles_.rend());
   while (!pending.empty()) {
     const Rect r = pending.back();
     pending.pop_back();
     const GLuint counters[kCounterWords] = {0, static_cast<GLuint>(capacity), 0, 0};
     pool_.write(0, sizeof counters, counters);
     GLuint listHeader[kPixelListHeaderWords] = {};  // the region counts, then the capacity
-    listHeader[kPixelListRegions] = static_cast<GLuint>(tilePixels());
+    listHeader[kPixelListRegions] = static_cast<GLuint>(tilePixels_);
     pixelLists_.write(0, sizeof listHeader, listHeader);
     pixelLists_.bind(kPixelListsBinding);
     fullBarrier(gl_);
@@ -218,10 +266,6 @@ const GlProgram& VolumeResolve::sortedProgram(std::size_t stage) {
         linkComputeProgram(gl_, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_sorted.comp.glsl"},
                            fragmentDefines() + sortedResolveDefines(stage));
   return program;
-}
-
-std::size_t VolumeResolve::tilePixels() const {
-  return static_cast<std::size_t>(tiling_.tileWidth) * static_cast<std::size_t>(tiling_.tileHeight);
 }
 
 void VolumeResolve::resolveTile(GLuint colourTexture) {

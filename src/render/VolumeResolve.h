@@ -48,6 +48,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "render/GlFunctions.h"
 #include "render/GlResources.h"
@@ -63,6 +64,10 @@ inline constexpr float kOpaqueTransmittance = 1e-7f;
 
 // Words (4 bytes) per fragment node: entry, exit, τ, radiance r, g, b, next.
 inline constexpr int kFragmentNodeWords = 7;
+
+// The share of the pool's nodes that planned bands leave free (VolumeResolve::planBands): a
+// margin for a count that misses a fragment the pass stores (the two programs' rounding).
+inline constexpr double kBandHeadroom = 0.01;
 
 // Bytes the fragment pool needs for a width × height particle buffer: its four counters and
 // fragmentsPerPixel nodes per pixel.
@@ -85,6 +90,17 @@ struct VolumeTiling {
 // one pixel's nodes fit.
 VolumeTiling planVolumeTiles(int width, int height, int fragmentsPerPixel, long double budgetBytes);
 
+// Bands of whole rows [first, end) from the fragments counted in each row (rowFragments, bottom
+// row first): each band as many rows as keep its fragments within `capacity` nodes and its
+// pixels within `maxPixels` (the pixel lists' room), taken greedily from the bottom, which makes
+// the fewest bands a partition into runs of rows can have. A row over `capacity` on its own is a
+// band of one row (drawn, found over, split by run()).
+struct VolumeBand {
+  int first = 0, end = 0;
+};
+std::vector<VolumeBand> planVolumeBands(const std::vector<double>& rowFragments, int width, double capacity,
+                                        std::size_t maxPixels);
+
 class VolumeResolve {
  public:
   VolumeResolve(const GlFunctions& gl, const StorageBudget& budget);
@@ -100,6 +116,12 @@ class VolumeResolve {
   // storage budget; 0: kDefaultVolumePoolBytes), sizes the pool for one tile, empties the lists.
   // Lists of up to shortList segments (0 … kShortListCapacity) go to the sorted resolves.
   VolumeTiling prepare(int width, int height, int fragmentsPerPixel, long double budgetBytes, int shortList);
+  // Replans the prepared buffer's tiles as bands of rows from its fragments counted per pixel
+  // (the red channel of `countTexture`, RGBA32F of the prepared size; ParticlePass::
+  // countFragments): planVolumeBands with the pool at the whole budget, less kBandHeadroom of
+  // its nodes. The expected load's plan overflows where the fragments crowd (a cloudscape's
+  // horizon), and an overflowed tile's first draw is shaded for nothing.
+  void planBands(GLuint countTexture);
   // For each tile of the prepared tiling: empties the pool, binds it and the heads for the
   // particle pass (pool at binding 2, pixel lists at binding 4, heads at image unit 0), scissors
   // to the tile, calls drawTile, then composites the tile's lists into the colour texture
@@ -121,6 +143,7 @@ class VolumeResolve {
     std::size_t cutPixels = 0;        // pixels whose resolve the GL cut short (loop budget; header)
     std::size_t tiles = 0;            // tiles resolved (the plan's, and the parts of split ones)
     std::size_t redrawnTiles = 0;     // tiles drawn, found over the pool's room and split in two
+    std::size_t countedFragments = 0;  // planBands' count (0: the plan is prepare's)
   };
   Counts counts() const { return counts_; }
   const VolumeTiling& tiling() const { return tiling_; }
@@ -138,15 +161,22 @@ class VolumeResolve {
   StorageBuffer pool_;
   StorageBuffer cut_;        // the resolves' count of pixels the GL cut short (binding 3)
   StorageBuffer pixelLists_;  // the pixels with a list, by region (binding 4, volume_fragments.glsl)
+  StorageBuffer rowCounts_;   // planBands' fragments per row (binding 5, volume_row_counts.comp.glsl)
+  GlProgram rowCountsProgram_;  // linked on first use
   int shortList_ = kShortListCapacity;
   GLuint heads_ = 0, unusedHeads_ = 0;
   int width_ = 0, height_ = 0;
   VolumeTiling tiling_;
+  struct Rect {
+    int x0, y0, x1, y1;
+  };
+  std::vector<Rect> tiles_;  // the tiles run() draws, in order: the tiling's, or planBands'
+  std::size_t tilePixels_ = 0;  // the most pixels any tile of the plan has
+  long double budgetBytes_ = 0;  // the pool's budget (prepare)
   Counts counts_;
   double resolveSeconds_ = 0;
 
   const GlProgram& sortedProgram(std::size_t stage);  // linked on first use
-  std::size_t tilePixels() const;  // of the plan's tile: the most any drawn tile has
   void resolveTile(GLuint colourTexture);
 };
 

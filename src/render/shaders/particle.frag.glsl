@@ -1,7 +1,7 @@
 // particle.frag.glsl — shades one particle along one view ray with the tables (seed §4.4, §5.4).
 // Preceded by cloudlut_geometry.glsl, cloudlut_phase.glsl, cloudlut_sampling.glsl,
 // cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl,
-// volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl, sun_chord_map.glsl,
+// particle_chord.glsl, volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl, sun_chord_map.glsl,
 // sun_volume_sampling.glsl, zenith_volume_sampling.glsl and diffusion_sampling.glsl.
 // Two lighting models (render/RenderTypes.h, docs/LIGHTING.md): the seed's (kLighting 0) and the
 // cloud model (kLighting 1), whose equations are cloudlut_shading.glsl's.
@@ -90,23 +90,13 @@ void main() {
   mat3 toParticle = mat3(p.toParticle[0].xyz, p.toParticle[1].xyz, p.toParticle[2].xyz);
   float rho = p.centerDensity.w;
 
-  // The view ray in world space (unit direction) and in particle space (unnormalised, so that
-  // the ray parameter t is the world distance from the eye).
+  // The view ray in world space (unit direction) and its chord through the ellipsoid
+  // (particle_chord.glsl): o, d in particle space, [tEnter, tExit] in world distance from the eye.
   vec3 dir = normalize(vWorld - uEye);
-  vec3 o = toParticle * (uEye - p.centerDensity.xyz);
-  vec3 d = toParticle * dir;
-
-  // |o + t d|^2 = 1, a t² + 2 b t + c = 0, roots in the cancellation-free form: the whole chord
-  // [tEnter, tExit] (world distance from the eye; tEnter ≤ 0 when the eye is inside, c ≤ 0).
-  float a = dot(d, d);
-  float b = dot(o, d);
-  float c = dot(o, o) - 1.0;
-  float disc = b * b - a * c;
-  bool inside = c <= 0.0;
-  if (disc <= 0.0 || (!inside && b >= 0.0)) discard;  // a miss, or the sphere behind the eye
-  float q = b < 0.0 ? -b + sqrt(disc) : -b - sqrt(disc);
-  float tEnter = b < 0.0 ? c / q : q / a;
-  float tExit = b < 0.0 ? q / a : c / q;
+  vec3 o, d;
+  float tEnter, tExit;
+  bool inside;
+  if (!particleViewChord(uEye, dir, p.centerDensity.xyz, toParticle, o, d, tEnter, tExit, inside)) discard;
   // The part the eye sees, [tNear, tExit], and its share of the chord's length (1 outside).
   float tNear = max(tEnter, 0.0);
   float front = inside ? clamp((tExit - tNear) / max(tExit - tEnter, 1e-30), 0.0, 1.0) : 1.0;

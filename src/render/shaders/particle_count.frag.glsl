@@ -1,0 +1,28 @@
+// particle_count.frag.glsl — counts the fragments the particle pass will store (volume-aware
+// blending plans its screen tiles from them, render/VolumeResolve.h): every fragment whose view
+// ray meets its particle's ellipsoid (particle_chord.glsl, the particle pass's own test) adds
+// 1 to its pixel. Preceded by particle_common.glsl and particle_chord.glsl.
+//
+// Output 0 (RGBA32F, blended ONE/ONE): r = the pixel's count (exact up to 2^24);
+// output 1 (R32F, blended with MIN): uNoDistance, which leaves the cleared distance as it was.
+
+uniform vec3 uEye;
+uniform float uNoDistance;
+
+in vec3 vWorld;
+flat in int vParticle;
+
+layout(location = 0) out vec4 oCount;
+layout(location = 1) out float oDistance;
+
+void main() {
+  GpuParticle p = particles[vParticle];
+  mat3 toParticle = mat3(p.toParticle[0].xyz, p.toParticle[1].xyz, p.toParticle[2].xyz);
+  vec3 o, d;
+  float tEnter, tExit;
+  bool inside;
+  if (!particleViewChord(uEye, normalize(vWorld - uEye), p.centerDensity.xyz, toParticle, o, d, tEnter, tExit, inside))
+    discard;
+  oCount = vec4(1.0, 0.0, 0.0, 0.0);
+  oDistance = uNoDistance;
+}
