@@ -31,6 +31,12 @@
 // the pool is emptied for the next. Every pixel sees its whole list, so the tiled image is the
 // untiled one.
 //
+// That plan expects F fragments on every pixel. Where they crowd (a cloudscape's horizon) its
+// tiles overflow, and each overflowed tile's first draw is shaded for nothing. planBands replaces
+// it by bands of whole rows cut from the fragments counted per row beforehand (ParticlePass::
+// countFragments runs the particle shader's own ray test), each band filling the whole budget:
+// none overflows (docs/BENCHMARKS.md, "Screen tiles of a cloudscape").
+//
 // A pixel with L segments makes about L²/kMaxSegmentsPerPixel loop passes in the resolve. llvmpipe
 // ends every loop of a shader invocation once its loops have made 65535 passes in all, which
 // hundreds of segments on one pixel reach (600 stacked particles do not, 1000 do): such a pixel
