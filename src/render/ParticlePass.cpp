@@ -38,6 +38,20 @@ std::string configurationDefines(const RenderSettings& s, bool volume, bool sunB
          glslDefine("PARTICLE_DETAIL_NOISE", s.detail.enabled() ? 1 : 0) + SunVolume::samplingDefines(chordMap);
 }
 
+// The proxies' raster state: back faces only (one fragment per covered pixel, the eye inside a
+// box too), no depth test; colour attachment 0 blended ONE/dstColour for rgb and srcAlpha/dstAlpha
+// for a, the distance attachment 1 with MIN.
+void setProxyState(const GlFunctions& gl, GLenum dstColour, GLenum srcAlpha, GLenum dstAlpha) {
+  gl.Disable(GL_DEPTH_TEST);
+  gl.Enable(GL_CULL_FACE);
+  gl.FrontFace(GL_CCW);
+  gl.CullFace(GL_FRONT);
+  gl.Enable(GL_BLEND);
+  gl.BlendEquationi(0, GL_FUNC_ADD);
+  gl.BlendFuncSeparatei(0, GL_ONE, dstColour, srcAlpha, dstAlpha);
+  gl.BlendEquationi(1, GL_MIN);
+}
+
 }  // namespace
 
 ParticlePass::ParticlePass(const GlFunctions& gl, const GlContext& context, const io::LutSet& luts,
@@ -80,14 +94,7 @@ void ParticlePass::countFragments(std::size_t count, bool useOrder, float farPla
     countProgram_ = linkDrawProgram(gl_, kVertexFiles, kCountFragmentFiles, "", "particle count");
     requireParticleRecordLayout(gl_, countProgram_.id(), "particle count program");
   }
-  gl_.Disable(GL_DEPTH_TEST);
-  gl_.Enable(GL_CULL_FACE);
-  gl_.FrontFace(GL_CCW);
-  gl_.CullFace(GL_FRONT);
-  gl_.Enable(GL_BLEND);
-  gl_.BlendEquationi(0, GL_FUNC_ADD);
-  gl_.BlendFuncSeparatei(0, GL_ONE, GL_ONE, GL_ONE, GL_ONE);
-  gl_.BlendEquationi(1, GL_MIN);
+  setProxyState(gl_, GL_ONE, GL_ONE, GL_ONE);  // counts add
   gl_.UseProgram(countProgram_.id());
   const ProgramUniforms uniforms(gl_, countProgram_.id());
   uniforms.set("uNoDistance", kNoDistance);
@@ -100,14 +107,7 @@ void ParticlePass::countFragments(std::size_t count, bool useOrder, float farPla
 void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float farPlane, int width, int height,
                         const RenderSettings& s, const SunVolume& sun, bool sunBuilt, const SunVolume& zenith,
                         bool zenithBuilt, const DiffusionVolume& diffusion) {
-  gl_.Disable(GL_DEPTH_TEST);
-  gl_.Enable(GL_CULL_FACE);
-  gl_.FrontFace(GL_CCW);
-  gl_.CullFace(GL_FRONT);
-  gl_.Enable(GL_BLEND);
-  gl_.BlendEquationi(0, GL_FUNC_ADD);
-  gl_.BlendFuncSeparatei(0, GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_SRC_ALPHA);
-  gl_.BlendEquationi(1, GL_MIN);
+  setProxyState(gl_, GL_SRC_ALPHA, GL_ZERO, GL_SRC_ALPHA);  // C ← R + e^{−τ}·C, T ← e^{−τ}·T
 
   // the chord map when it holds every chord (or when no volume was built: it is not read then)
   const bool fromMap = s.sunChordMap && (!sunBuilt || sun.chordMapComplete());

@@ -87,7 +87,7 @@ layout(location = 1) out float oDistance;
 
 void main() {
   GpuParticle p = particles[vParticle];
-  mat3 toParticle = mat3(p.toParticle[0].xyz, p.toParticle[1].xyz, p.toParticle[2].xyz);
+  mat3 toParticle = particleToUnitSphere(p);
   float rho = p.centerDensity.w;
 
   // The view ray in world space (unit direction) and its chord through the ellipsoid

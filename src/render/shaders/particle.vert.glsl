@@ -62,7 +62,7 @@ void main() {
   float boundingRadius = p.toParticle[1].w;
   vec3 corner;
   if (uOutlinePolygons != 0 && length(fromCentre) > kPolygonClearance * boundingRadius + uNearPlane) {
-    mat3 toParticle = mat3(p.toParticle[0].xyz, p.toParticle[1].xyz, p.toParticle[2].xyz);
+    mat3 toParticle = particleToUnitSphere(p);
     int triangle = gl_VertexID / 3, vertex = gl_VertexID % 3;
     // fan (0, t + 1, t + 2) for t < kPolygonSides − 2; the later triangles collapse onto corner 0
     int k = triangle < kPolygonSides - 2 && vertex > 0 ? triangle + vertex : 0;

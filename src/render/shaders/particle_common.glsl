@@ -21,3 +21,6 @@ struct GpuParticle {
 layout(std430, binding = 0) PARTICLES_ACCESS buffer Particles {
   GpuParticle particles[];
 };
+
+// The inverse map of particle p's ellipsoid (p = toParticle · (x − centre), the unit sphere).
+mat3 particleToUnitSphere(GpuParticle p) { return mat3(p.toParticle[0].xyz, p.toParticle[1].xyz, p.toParticle[2].xyz); }

@@ -17,7 +17,7 @@ layout(location = 1) out float oDistance;
 
 void main() {
   GpuParticle p = particles[vParticle];
-  mat3 toParticle = mat3(p.toParticle[0].xyz, p.toParticle[1].xyz, p.toParticle[2].xyz);
+  mat3 toParticle = particleToUnitSphere(p);
   vec3 o, d;
   float tEnter, tExit;
   bool inside;

@@ -103,7 +103,7 @@ void main() {
     for (int k = 0; k < uCascades; ++k) sunChordFootprints[int(index) * SUN_CASCADES_MAX + k] = ivec4(SUN_CHORDS_NONE);
   if (!(rho > 0.0)) return;
   vec3 centre = p.centerDensity.xyz;
-  mat3 toParticle = mat3(p.toParticle[0].xyz, p.toParticle[1].xyz, p.toParticle[2].xyz);
+  mat3 toParticle = particleToUnitSphere(p);
   float reach = p.toParticle[1].w;  // bounding-sphere radius (particle_common.glsl)
   for (int k = 0; k < uCascades; ++k) {
     ivec2 lo, size;
