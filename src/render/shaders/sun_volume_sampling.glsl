@@ -18,12 +18,9 @@ uniform float uSunChordOuterThird;  // how the splat laid each chord (the table'
 // from the finest cascade whose columns hold x (trilinear; a point outside every cascade is
 // unshadowed; above the top slice it takes the top's value, below the bottom the bottom's).
 float sunOpticalDepth(vec3 x) {
-  for (int k = 0; k < uSunCascades; ++k) {
-    vec3 g = (uSunToGrid[k] * vec4(x, 1.0)).xyz;
-    if (!cascadeHoldsColumns(g, uSunDims)) continue;
-    return cascadeSliceAndFarEnd(uSunTau, uSunDims, uSunCascades, k, g).x;
-  }
-  return 0.0;
+  vec3 g;
+  int k = finestCascadeHolding(uSunToGrid, uSunCascades, uSunDims, x, g);
+  return k < 0 ? 0.0 : cascadeSliceAndFarEnd(uSunTau, uSunDims, uSunCascades, k, g).x;
 }
 
 // What the volume says of the sunlight at world point x of particle record `particle` (centre,
@@ -38,44 +35,42 @@ float sunOpticalDepth(vec3 x) {
 // (0, 0, 0, 0) outside every cascade.
 vec4 sunOpticalDepths(vec3 x, int particle, vec3 centre, mat3 toParticle, float rho, sampler3D opticalDepth,
                       vec4 opticalDepthDims, float sigma) {
-  for (int k = 0; k < uSunCascades; ++k) {
-    vec3 g = (uSunToGrid[k] * vec4(x, 1.0)).xyz;
-    if (!cascadeHoldsColumns(g, uSunDims)) continue;
-    vec2 totalAndColumn = cascadeSliceAndFarEnd(uSunTau, uSunDims, uSunCascades, k, g);
-    float total = totalAndColumn.x, column = totalAndColumn.y;
-    float w = clamp(g.z, 0.0, float(uSunDims.z) - 1.0);
-    float dwds = (uSunToGrid[k] * vec4(uSunColumns, 0.0)).z;
-    vec2 base = floor(g.xy), f = g.xy - base;
-    float w0 = min(floor(w), float(uSunDims.z) - 2.0), fw = w - w0;
-    float own = 0.0, ownColumn = 0.0;
+  vec3 g;
+  int k = finestCascadeHolding(uSunToGrid, uSunCascades, uSunDims, x, g);
+  if (k < 0) return vec4(0.0);
+  vec2 totalAndColumn = cascadeSliceAndFarEnd(uSunTau, uSunDims, uSunCascades, k, g);
+  float total = totalAndColumn.x, column = totalAndColumn.y;
+  float w = clamp(g.z, 0.0, float(uSunDims.z) - 1.0);
+  float dwds = (uSunToGrid[k] * vec4(uSunColumns, 0.0)).z;
+  vec2 base = floor(g.xy), f = g.xy - base;
+  float w0 = min(floor(w), float(uSunDims.z) - 2.0), fw = w - w0;
+  float own = 0.0, ownColumn = 0.0;
 #if SUN_CHORD_MAP
-    ivec4 footprint = sunChordFootprints[particle * SUN_CASCADES_MAX + k];
+  ivec4 footprint = sunChordFootprints[particle * SUN_CASCADES_MAX + k];
 #endif
-    for (int n = 0; n < 4; ++n) {
-      vec2 corner = vec2(float(n & 1), float(n >> 1));
-      float weight = mix(1.0 - f.x, f.x, corner.x) * mix(1.0 - f.y, f.y, corner.y);
-      if (weight <= 0.0) continue;
-      float tau, wFirst, wFar;
+  for (int n = 0; n < 4; ++n) {
+    vec2 corner = vec2(float(n & 1), float(n >> 1));
+    float weight = mix(1.0 - f.x, f.x, corner.x) * mix(1.0 - f.y, f.y, corner.y);
+    if (weight <= 0.0) continue;
+    float tau, wFirst, wFar;
 #if SUN_CHORD_MAP
-      int at = sunChordIndex(footprint, ivec2(base + corner));
-      if (at < 0) continue;  // outside the footprint, or not splatted into this cascade
-      vec4 chord = sunChords[at];
-      tau = chord.x;
-      wFirst = chord.y;
-      wFar = chord.z;
-      if (!(tau > 0.0)) continue;
+    int at = sunChordIndex(footprint, ivec2(base + corner));
+    if (at < 0) continue;  // outside the footprint, or not splatted into this cascade
+    vec4 chord = sunChords[at];
+    tau = chord.x;
+    wFirst = chord.y;
+    wFar = chord.z;
+    if (!(tau > 0.0)) continue;
 #else
-      if (!sunColumnChord(opticalDepth, opticalDepthDims, sigma, uSunToWorld[k], dwds, base + corner, centre,
-                          toParticle, rho, uSunColumns, tau, wFirst, wFar))
-        continue;
+    if (!sunColumnChord(opticalDepth, opticalDepthDims, sigma, uSunToWorld[k], dwds, base + corner, centre,
+                        toParticle, rho, uSunColumns, tau, wFirst, wFar))
+      continue;
 #endif
-      own += weight * mix(sunVolumeRampAt(tau, wFirst, wFar, w0, uSunChordOuterThird), sunVolumeRampAt(tau, wFirst, wFar, w0 + 1.0, uSunChordOuterThird), fw);
-      ownColumn += weight * sunVolumeRampAt(tau, wFirst, wFar, 0.0, uSunChordOuterThird);
-    }
-    column = max(column, total);
-    return vec4(max(total - own, 0.0), total, column, max(column - ownColumn, 0.0));
+    own += weight * mix(sunVolumeRampAt(tau, wFirst, wFar, w0, uSunChordOuterThird), sunVolumeRampAt(tau, wFirst, wFar, w0 + 1.0, uSunChordOuterThird), fw);
+    ownColumn += weight * sunVolumeRampAt(tau, wFirst, wFar, 0.0, uSunChordOuterThird);
   }
-  return vec4(0.0);
+  column = max(column, total);
+  return vec4(max(total - own, 0.0), total, column, max(column - ownColumn, 0.0));
 }
 
 // The local cloud along the sun column through world point x (localCloudColumn): the matter

@@ -14,11 +14,9 @@ uniform mat4 uZenithToGrid[SUN_CASCADES_MAX];
 // whose columns hold x (trilinear): x = above it (toward +y, out of the grid), y = below it (the
 // whole column less the part above). (0, 0) outside every cascade.
 vec2 zenithOpticalDepths(vec3 x) {
-  for (int k = 0; k < uZenithCascades; ++k) {
-    vec3 g = (uZenithToGrid[k] * vec4(x, 1.0)).xyz;
-    if (!cascadeHoldsColumns(g, uZenithDims)) continue;
-    vec2 aboveAndColumn = cascadeSliceAndFarEnd(uZenithTau, uZenithDims, uZenithCascades, k, g);
-    return vec2(aboveAndColumn.x, max(aboveAndColumn.y - aboveAndColumn.x, 0.0));
-  }
-  return vec2(0.0);
+  vec3 g;
+  int k = finestCascadeHolding(uZenithToGrid, uZenithCascades, uZenithDims, x, g);
+  if (k < 0) return vec2(0.0);
+  vec2 aboveAndColumn = cascadeSliceAndFarEnd(uZenithTau, uZenithDims, uZenithCascades, k, g);
+  return vec2(aboveAndColumn.x, max(aboveAndColumn.y - aboveAndColumn.x, 0.0));
 }
