@@ -234,7 +234,7 @@ int runRender(int argc, char** argv) {
         std::printf("  volume blending: %zu tile(s) (%s; %zu split for the fragment load), pool %.1f MiB, %zu fragments, "
                     "%zu overflowed (alpha-blended), %zu pixels over %d segments, %zu over %d (chunked), %zu over %d "
                     "(resolved in more than one chunk), resolve %.1f ms\n",
-                    stats.volumeTiles, stats.countedFragments > 0 ? "planned from the counted fragments" : "planned from the expected load",
+                    stats.volumeTiles, stats.volumeTilesCounted ? "planned from the counted fragments" : "planned from the expected load",
                     stats.volumeRedrawnTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0,
                     stats.fragments, stats.fragmentOverflow, stats.midListPixels,
                     std::min(render::kSortedResolveSlots[1], settings.volumeShortList), stats.longListPixels, settings.volumeShortList, stats.truncatedPixels, render::kMaxSegmentsPerPixel,

@@ -34,8 +34,9 @@ inline constexpr int kDefaultFragmentsPerPixel = 16;
 
 // How volume-aware blending plans its screen tiles when the expected load (fragmentsPerPixel)
 // needs more than one (render/VolumeResolve.h): from that load alone (Expected), or from the
-// fragments counted first (Counted: a cheap pass of the particles' proxies and ray test, about a
-// tenth of the particle pass's time, after which no tile overflows). Auto counts for generated
+// fragments counted first (Counted: a pass of the particles' proxies that runs only their ray
+// test, 14% of the particle pass's time on the 1419-particle patch, after which a tile overflows
+// only where one row alone holds more fragments than the pool). Auto counts for generated
 // cloudscapes, whose fragments crowd toward the horizon, so that the expected load's tiles
 // overflow there and their first draws are shaded for nothing; explicit particle lists keep the
 // expected plan, which they seldom overflow (docs/BENCHMARKS.md, "Screen tiles of a cloudscape").
@@ -158,7 +159,8 @@ struct RenderStats {
   std::size_t resolveCutPixels = 0;  // volume: pixels whose resolve the GL cut short (VolumeResolve.h)
   std::size_t volumeTiles = 0;       // volume: screen tiles, each drawn and resolved on its own
   std::size_t volumeRedrawnTiles = 0;  // volume: tiles over the pool's room, undone and split in two
-  std::size_t countedFragments = 0;  // volume: fragments counted to plan the tiles (0: not counted; VolumeTilePlan)
+  std::size_t countedFragments = 0;  // volume: fragments counted to plan the tiles (VolumeTilePlan)
+  bool volumeTilesCounted = false;   // volume: the tiles were planned from countedFragments
   std::size_t volumePoolBytes = 0;   // volume: bytes of the node pool (one tile's)
   std::size_t tileOverflow = 0;      // occlusion: cover-bin entries dropped (render/LightOcclusion.h)
   std::size_t sunFootprintOverflow = 0;  // sun volume: particle-cascade pairs left to a coarser cascade

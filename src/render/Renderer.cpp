@@ -213,7 +213,8 @@ struct Renderer::Impl {
         stats->volumeTiles = c.tiles;
         stats->volumeRedrawnTiles = c.redrawnTiles;
         stats->countedFragments = c.countedFragments;
-        stats->volumePoolBytes = volume.tiling().poolBytes;
+        stats->volumeTilesCounted = c.countedPlan;
+        stats->volumePoolBytes = volume.poolBytes();
       }
     } else {
       particles.draw(count, useOrder, false, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith, diffusion);

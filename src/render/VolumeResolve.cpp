@@ -132,6 +132,7 @@ VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel
                   "volume blending of a " + std::to_string(tiling_.tileWidth) + "x" + std::to_string(tiling_.tileHeight) +
                       " tile with " + std::to_string(fragmentsPerPixel) + " fragments per pixel");
   budgetBytes_ = budget;
+  poolBytes_ = tiling_.poolBytes;
   tiles_.clear();
   for (int row = 0; row < tiling_.rows; ++row)
     for (int column = 0; column < tiling_.columns; ++column) {
@@ -171,6 +172,7 @@ void VolumeResolve::planBands(GLuint countTexture) {
   const std::vector<double> rows(counted.begin(), counted.end());
   counts_.countedFragments = 0;
   for (const GLuint c : counted) counts_.countedFragments += c;
+  counts_.countedPlan = true;
   const std::size_t nodes = static_cast<std::size_t>((budgetBytes_ - 4.0L * kCounterWords) / kNodeBytes);
   const std::size_t listWords = static_cast<std::size_t>(budget_.limitBytes() / 4.0L) - kPixelListHeaderWords;
   const std::vector<VolumeBand> bands =
@@ -181,16 +183,16 @@ void VolumeResolve::planBands(GLuint countTexture) {
     tiles_.push_back({0, b.first, width_, b.end});
     tilePixels_ = std::max(tilePixels_, static_cast<std::size_t>(width_) * static_cast<std::size_t>(b.end - b.first));
   }
-  tiling_.poolBytes = 4 * kCounterWords + kNodeBytes * nodes;
+  poolBytes_ = 4 * kCounterWords + kNodeBytes * nodes;
 }
 
 void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawTile) {
   // sized here, once the plan is final (prepare's, or planBands'), so that a frame does not
   // reallocate them twice
-  pool_.ensure(tiling_.poolBytes);
+  pool_.ensure(poolBytes_);
   // A word per pixel of a tile and region (four sevenths of a pool that holds one node per pixel).
   pixelLists_.ensure(4 * (kPixelListHeaderWords + kPixelListRegions * tilePixels_));
-  const std::size_t capacity = (tiling_.poolBytes - 4 * kCounterWords) / kNodeBytes;
+  const std::size_t capacity = (poolBytes_ - 4 * kCounterWords) / kNodeBytes;
   // The plan's tiles in order, as a stack (last = next). A tile whose fragments did not all find
   // room in the pool is drawn again as two halves along its longer side, until each part fits or
   // is one pixel: the pool's capacity per tile is fixed, so halving the pixels doubles the room

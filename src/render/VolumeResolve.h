@@ -35,7 +35,8 @@
 // tiles overflow, and each overflowed tile's first draw is shaded for nothing. planBands replaces
 // it by bands of whole rows cut from the fragments counted per row beforehand (ParticlePass::
 // countFragments runs the particle shader's own ray test), each band filling the whole budget:
-// none overflows (docs/BENCHMARKS.md, "Screen tiles of a cloudscape").
+// none overflows unless one row alone holds more fragments than the pool, which run() splits as
+// any overflowed tile (docs/BENCHMARKS.md, "Screen tiles of a cloudscape").
 //
 // A pixel with L segments makes about L²/kMaxSegmentsPerPixel loop passes in the resolve. llvmpipe
 // ends every loop of a shader invocation once its loops have made 65535 passes in all, which
@@ -149,10 +150,14 @@ class VolumeResolve {
     std::size_t cutPixels = 0;        // pixels whose resolve the GL cut short (loop budget; header)
     std::size_t tiles = 0;            // tiles resolved (the plan's, and the parts of split ones)
     std::size_t redrawnTiles = 0;     // tiles drawn, found over the pool's room and split in two
-    std::size_t countedFragments = 0;  // planBands' count (0: the plan is prepare's)
+    std::size_t countedFragments = 0;  // planBands' count
+    bool countedPlan = false;          // the tiles are planBands' (false: prepare's tiling)
   };
   Counts counts() const { return counts_; }
+  // prepare's tiling (the expected load's plan), which planBands does not change.
   const VolumeTiling& tiling() const { return tiling_; }
+  // Bytes of the node pool run() fills, one tile's: the tiling's, or planBands' whole budget.
+  std::size_t poolBytes() const { return poolBytes_; }
   // Seconds the resolves of the last run took (glFinish each).
   double resolveSeconds() const { return resolveSeconds_; }
 
@@ -173,6 +178,7 @@ class VolumeResolve {
   GLuint heads_ = 0, unusedHeads_ = 0;
   int width_ = 0, height_ = 0;
   VolumeTiling tiling_;
+  std::size_t poolBytes_ = 0;  // the plan's pool (poolBytes())
   struct Rect {
     int x0, y0, x1, y1;
   };
