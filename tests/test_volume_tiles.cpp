@@ -170,13 +170,57 @@ TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overla
   for (std::size_t i = 0; i < image.rgba.size(); ++i)
     maxDiff = std::max(maxDiff, double(std::abs(image.rgba[i] - reference.rgba[i])));
   CHECK(maxDiff <= 1e-4);
-  // an explicit scene under the automatic plan keeps the expected load's tiles
+  // A pool of 512 nodes planned for one fragment per pixel (bands of 5 rows), which the busy rows
+  // overflow. The expected plan never counts: its overflowed tiles are split in halves.
+  s.fragmentsPerPixel = 1;
+  s.volumePoolBytes = 16.0L + 28.0L * 512;
+  s.tilePlan = VolumeTilePlan::Expected;
+  RenderStats expected;
+  renderer.render(scene.particles, s, &expected);
+  CHECK(!expected.volumeTilesCounted);
+  CHECK(expected.countedFragments == 0);
+  CHECK(expected.volumeRedrawnTiles > 1);
+  // an explicit scene under the automatic plan counts at its first overflow: that one tile is
+  // drawn again, the rows from it up are counted and cut into bands, and none of those overflows
   s.tilePlan = VolumeTilePlan::Auto;
   RenderStats automatic;
-  renderer.render(scene.particles, s, &automatic);
-  CHECK(!automatic.volumeTilesCounted);
-  CHECK(automatic.countedFragments == 0);
-  CHECK(automatic.volumeRedrawnTiles > 0);
+  const Image automaticImage = renderer.render(scene.particles, s, &automatic);
+  std::printf("[volume tiles] automatic plan: %zu tiles resolved (%zu split; expected plan %zu, %zu split), %zu of %zu "
+              "fragments counted\n",
+              automatic.volumeTiles, automatic.volumeRedrawnTiles, expected.volumeTiles, expected.volumeRedrawnTiles,
+              automatic.countedFragments, whole.fragments);
+  CHECK(automatic.volumeTilesCounted);
+  CHECK(automatic.volumeRedrawnTiles == 1);
+  CHECK(automatic.countedFragments > 0);
+  CHECK(automatic.countedFragments <= whole.fragments);
+  CHECK(automatic.fragments == whole.fragments);
+  CHECK(automatic.fragmentOverflow == 0);
+  CHECK(automatic.volumeTiles < expected.volumeTiles);
+  double automaticDiff = 0;
+  for (std::size_t i = 0; i < automaticImage.rgba.size(); ++i)
+    automaticDiff = std::max(automaticDiff, double(std::abs(automaticImage.rgba[i] - reference.rgba[i])));
+  CHECK(automaticDiff <= 1e-4);
+  std::size_t automaticDistance = 0;
+  for (std::size_t i = 0; i < automaticImage.distance.size(); ++i)
+    if (automaticImage.distance[i] != reference.distance[i]) ++automaticDistance;
+  CHECK(automaticDistance == 0);
+  // the next frame of the same load counts before it draws: nothing is drawn twice
+  RenderStats nextFrame;
+  const Image nextImage = renderer.render(scene.particles, s, &nextFrame);
+  CHECK(nextFrame.volumeTilesCounted);
+  CHECK(nextFrame.volumeRedrawnTiles == 0);
+  CHECK(nextFrame.countedFragments == whole.fragments);
+  CHECK(nextImage.rgba == reference.rgba);
+  // a frame whose count finds the expected plan big enough (bands of 5 rows, 16 fragments a
+  // pixel) stops the counting: the frame after it keeps the expected plan uncounted
+  s.fragmentsPerPixel = defaultFragments;
+  s.volumePoolBytes = 16.0L + 28.0L * defaultFragments * 5 * 96;
+  RenderStats roomy, afterRoomy;
+  renderer.render(scene.particles, s, &roomy);
+  renderer.render(scene.particles, s, &afterRoomy);
+  CHECK(roomy.volumeTilesCounted);
+  CHECK(!afterRoomy.volumeTilesCounted);
+  CHECK(afterRoomy.volumeRedrawnTiles == 0);
 
   // A pool of 64 nodes, fewer than the busiest rows hold: those rows are bands of one row that
   // overflow, and run() splits them as any overflowed tile, so the image stays exact.

@@ -36,10 +36,13 @@ inline constexpr int kDefaultFragmentsPerPixel = 16;
 // needs more than one (render/VolumeResolve.h): from that load alone (Expected), or from the
 // fragments counted first (Counted: a pass of the particles' proxies that runs only their ray
 // test, 14% of the particle pass's time on the 1419-particle patch, after which a tile overflows
-// only where one row alone holds more fragments than the pool). Auto counts for generated
+// only where one row alone holds more fragments than the pool). Auto counts first for generated
 // cloudscapes, whose fragments crowd toward the horizon, so that the expected load's tiles
 // overflow there and their first draws are shaded for nothing; explicit particle lists keep the
-// expected plan, which they seldom overflow (docs/BENCHMARKS.md, "Screen tiles of a cloudscape").
+// expected plan until a tile overflows, then count the rows not drawn yet and plan them as
+// bands (VolumeResolve::run), so that a scene that never overflows pays no count
+// (docs/BENCHMARKS.md, "Screen tiles of a cloudscape"). Expected never counts: an overflowed
+// tile is split in halves, drawn again.
 enum class VolumeTilePlan { Auto, Counted, Expected };
 // "auto" / "counted" / "expected"; UsageError otherwise.
 VolumeTilePlan parseVolumeTilePlan(const std::string& text);

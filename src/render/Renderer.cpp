@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <functional>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -57,6 +58,9 @@ struct Renderer::Impl {
   // The particle buffer, kept from frame to frame while its size holds: a new one costs the GL a
   // fresh allocation, and llvmpipe its page faults inside the draw.
   std::unique_ptr<FloatRenderTarget> target;
+  // VolumeTilePlan::Auto: the last frame's fragments overflowed the expected tile plan, so this
+  // frame counts them before it draws (VolumeResolve::planBands) rather than at its first overflow.
+  bool countFirst = false;
 
   Impl(GlContext& c, const io::LutSet& luts)
       : context(c),
@@ -191,7 +195,8 @@ struct Renderer::Impl {
     gl.ClearBufferfv(GL_COLOR, 1, clearDistance);
 
     const Stopwatch drawClock;
-    const bool counted = s.tilePlan == VolumeTilePlan::Counted || (s.tilePlan == VolumeTilePlan::Auto && cloudscape);
+    const bool counted = s.tilePlan == VolumeTilePlan::Counted ||
+                         (s.tilePlan == VolumeTilePlan::Auto && (cloudscape || countFirst));
     if (blendVolume && counted && volume.tiling().count() > 1) {
       // More than one tile: plan them from the fragments themselves (VolumeResolve::planBands).
       particles.countFragments(count, useOrder, farPlane, w, h, s);
@@ -199,8 +204,18 @@ struct Renderer::Impl {
       gl.ClearBufferfv(GL_COLOR, 0, clearColour);
     }
     if (blendVolume) {
-      volume.run(target->colourTexture(),
-                 [&] { particles.draw(count, useOrder, true, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith, diffusion); });
+      // an explicit scene under Auto counts only once a tile overflows (VolumeResolve::run)
+      const bool countOnOverflow = s.tilePlan == VolumeTilePlan::Auto && !cloudscape;
+      std::function<void()> countTile;
+      if (countOnOverflow) countTile = [&] { particles.countFragments(count, useOrder, farPlane, w, h, s); };
+      volume.run(
+          target->colourTexture(),
+          [&] { particles.draw(count, useOrder, true, farPlane, w, h, s, sunVolume, sun, zenithVolume, built.zenith, diffusion); },
+          countTile);
+      // Auto: the next frame counts first while this one's fragments overflow the expected plan
+      // (a frame's load is much like the last's; a count that finds no overflow stops it)
+      countFirst = s.tilePlan == VolumeTilePlan::Auto && volume.counts().countedPlan &&
+                   volume.counts().expectedPlanOverflows;
       if (stats) {
         const VolumeResolve::Counts c = volume.counts();
         stats->fragments = c.fragments;

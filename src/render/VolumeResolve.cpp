@@ -156,7 +156,7 @@ VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel
   return tiling_;
 }
 
-void VolumeResolve::planBands(GLuint countTexture) {
+std::vector<double> VolumeResolve::countedRows(GLuint countTexture) {
   // the rows' sums on the GPU (volume_row_counts.comp.glsl), so that only a word per row is read
   // back, not the whole RGBA32F texture
   if (!rowCountsProgram_.id()) rowCountsProgram_ = linkComputeProgram(gl_, {"volume_row_counts.comp.glsl"}, "");
@@ -169,30 +169,52 @@ void VolumeResolve::planBands(GLuint countTexture) {
   fullBarrier(gl_);
   std::vector<GLuint> counted(static_cast<std::size_t>(height_));
   rowCounts_.read(0, 4 * counted.size(), counted.data());
-  const std::vector<double> rows(counted.begin(), counted.end());
+  return std::vector<double>(counted.begin(), counted.end());
+}
+
+void VolumeResolve::planBandsFrom(const std::vector<double>& rows, int firstRow) {
   counts_.countedFragments = 0;
-  for (const GLuint c : counted) counts_.countedFragments += c;
+  for (std::size_t y = static_cast<std::size_t>(firstRow); y < rows.size(); ++y)
+    counts_.countedFragments += static_cast<std::size_t>(rows[y]);
   counts_.countedPlan = true;
+  // Would prepare's tiles have overflowed? Counted from the first overflow up, one did. Counted
+  // from the bottom, each band of its rows against its pool; tiles that cut rows into runs are
+  // taken to overflow (a row's count does not say how its runs share it).
+  counts_.expectedPlanOverflows = firstRow > 0 || tiling_.columns > 1;
+  const double expectedCapacity = static_cast<double>((tiling_.poolBytes - 4 * kCounterWords) / kNodeBytes);
+  for (int y0 = 0; firstRow == 0 && tiling_.columns == 1 && y0 < height_; y0 += tiling_.tileHeight) {
+    double load = 0;
+    for (int y = y0; y < std::min(y0 + tiling_.tileHeight, height_); ++y) load += rows[static_cast<std::size_t>(y)];
+    if (load > expectedCapacity) counts_.expectedPlanOverflows = true;
+  }
   const std::size_t nodes = static_cast<std::size_t>((budgetBytes_ - 4.0L * kCounterWords) / kNodeBytes);
   const std::size_t listWords = static_cast<std::size_t>(budget_.limitBytes() / 4.0L) - kPixelListHeaderWords;
   const std::vector<VolumeBand> bands =
-      planVolumeBands(rows, width_, static_cast<double>(nodes) * (1.0 - kBandHeadroom), listWords / kPixelListRegions);
+      planVolumeBands(std::vector<double>(rows.begin() + firstRow, rows.end()), width_,
+                      static_cast<double>(nodes) * (1.0 - kBandHeadroom), listWords / kPixelListRegions);
   tiles_.clear();
   tilePixels_ = 0;
   for (const VolumeBand& b : bands) {
-    tiles_.push_back({0, b.first, width_, b.end});
+    tiles_.push_back({0, firstRow + b.first, width_, firstRow + b.end});
     tilePixels_ = std::max(tilePixels_, static_cast<std::size_t>(width_) * static_cast<std::size_t>(b.end - b.first));
   }
   poolBytes_ = 4 * kCounterWords + kNodeBytes * nodes;
 }
 
-void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawTile) {
+void VolumeResolve::planBands(GLuint countTexture) { planBandsFrom(countedRows(countTexture), 0); }
+
+void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawTile,
+                        const std::function<void()>& countTile) {
   // sized here, once the plan is final (prepare's, or planBands'), so that a frame does not
-  // reallocate them twice
-  pool_.ensure(poolBytes_);
-  // A word per pixel of a tile and region (four sevenths of a pool that holds one node per pixel).
-  pixelLists_.ensure(4 * (kPixelListHeaderWords + kPixelListRegions * tilePixels_));
-  const std::size_t capacity = (poolBytes_ - 4 * kCounterWords) / kNodeBytes;
+  // reallocate them twice; again if the first overflow replans the rest (below)
+  std::size_t capacity = 0;
+  const auto sizeStorage = [&] {
+    pool_.ensure(poolBytes_);
+    // A word per pixel of a tile and region (four sevenths of a pool that holds one node per pixel).
+    pixelLists_.ensure(4 * (kPixelListHeaderWords + kPixelListRegions * tilePixels_));
+    capacity = (poolBytes_ - 4 * kCounterWords) / kNodeBytes;
+  };
+  sizeStorage();
   // The plan's tiles in order, as a stack (last = next). A tile whose fragments did not all find
   // room in the pool is drawn again as two halves along its longer side, until each part fits or
   // is one pixel: the pool's capacity per tile is fixed, so halving the pixels doubles the room
@@ -226,6 +248,24 @@ void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawT
       gl_.ClearTexSubImage(colourTexture, 0, r.x0, r.y0, 0, w, h, 1, GL_RGBA, GL_FLOAT, clear);
       gl_.ClearTexSubImage(heads_, 0, r.x0, r.y0, 0, w, h, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &kListEnd);
       fullBarrier(gl_);
+      if (countTile && !counts_.countedPlan && counts_.redrawnTiles == 0 && r.x0 == 0 && r.x1 == width_) {
+        // The expected plan's first overflow, on a band of whole rows: the rows below are
+        // resolved, the rows from here up not drawn yet. Count their fragments (the colour
+        // texture's red channel there is cleared) and plan them as bands, as planBands does.
+        const int rows = height_ - r.y0;
+        gl_.ClearTexSubImage(colourTexture, 0, 0, r.y0, 0, width_, rows, 1, GL_RGBA, GL_FLOAT, clear);
+        gl_.Enable(GL_SCISSOR_TEST);
+        gl_.Scissor(0, r.y0, width_, rows);
+        countTile();
+        gl_.Disable(GL_SCISSOR_TEST);
+        planBandsFrom(countedRows(colourTexture), r.y0);
+        gl_.ClearTexSubImage(colourTexture, 0, 0, r.y0, 0, width_, rows, 1, GL_RGBA, GL_FLOAT, clear);
+        fullBarrier(gl_);
+        pending.assign(tiles_.rbegin(), tiles_.rend());
+        sizeStorage();
+        ++counts_.redrawnTiles;
+        continue;
+      }
       Rect a = r, b = r;
       if (w >= h)
         a.x1 = b.x0 = r.x0 + w / 2;

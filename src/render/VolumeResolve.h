@@ -36,7 +36,9 @@
 // it by bands of whole rows cut from the fragments counted per row beforehand (ParticlePass::
 // countFragments runs the particle shader's own ray test), each band filling the whole budget:
 // none overflows unless one row alone holds more fragments than the pool, which run() splits as
-// any overflowed tile (docs/BENCHMARKS.md, "Screen tiles of a cloudscape").
+// any overflowed tile (docs/BENCHMARKS.md, "Screen tiles of a cloudscape"). run() can also count
+// late, at the expected plan's first overflow: the rows not drawn yet are still clear in the colour
+// texture, so the count adds into them there, and only the overflowed tile is drawn twice.
 //
 // A pixel with L segments makes about L²/kMaxSegmentsPerPixel loop passes in the resolve. llvmpipe
 // ends every loop of a shader invocation once its loops have made 65535 passes in all, which
@@ -134,9 +136,13 @@ class VolumeResolve {
   // to the tile, calls drawTile, then composites the tile's lists into the colour texture
   // (RGBA32F, as prepared): in, the fragments that found no room (radiance, transmittance); out,
   // the result. A tile whose fragments overflow the pool is undone and drawn again as two halves
-  // (down to one pixel), so the plan adapts to the fragment load and stays exact. counts() then
+  // (down to one pixel), so the plan adapts to the fragment load and stays exact. With countTile
+  // (a pass that adds each fragment's 1 into the colour texture's red channel under the current
+  // scissor; ParticlePass::countFragments), the expected plan's first overflowed band is instead
+  // undone and the rows from it up are counted and planned as planBands plans (Counts::
+  // countedPlan): one tile shaded for nothing, where the halves could be many. counts() then
   // holds the sums over the tiles.
-  void run(GLuint colourTexture, const std::function<void()>& drawTile);
+  void run(GLuint colourTexture, const std::function<void()>& drawTile, const std::function<void()>& countTile = {});
   // Binds a small pool, small pixel lists and a 1×1 head image, for a particle pass that stores no
   // fragments.
   void bindUnused();
@@ -150,8 +156,9 @@ class VolumeResolve {
     std::size_t cutPixels = 0;        // pixels whose resolve the GL cut short (loop budget; header)
     std::size_t tiles = 0;            // tiles resolved (the plan's, and the parts of split ones)
     std::size_t redrawnTiles = 0;     // tiles drawn, found over the pool's room and split in two
-    std::size_t countedFragments = 0;  // planBands' count
-    bool countedPlan = false;          // the tiles are planBands' (false: prepare's tiling)
+    std::size_t countedFragments = 0;  // fragments counted for the bands (the rows they cover)
+    bool countedPlan = false;          // the tiles (all, or from the first overflow up) are counted bands
+    bool expectedPlanOverflows = false;  // counted: prepare's tiles would have overflowed (or did)
   };
   Counts counts() const { return counts_; }
   // prepare's tiling (the expected load's plan), which planBands does not change.
@@ -189,6 +196,10 @@ class VolumeResolve {
   double resolveSeconds_ = 0;
 
   const GlProgram& sortedProgram(std::size_t stage);  // linked on first use
+  // The fragments counted in each row of countTexture's red channel (bottom row first).
+  std::vector<double> countedRows(GLuint countTexture);
+  // tiles_ (and the pool, the pixel lists' size): bands of the rows from firstRow up.
+  void planBandsFrom(const std::vector<double>& rows, int firstRow);
   void resolveTile(GLuint colourTexture);
 };
 
