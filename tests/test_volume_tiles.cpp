@@ -128,6 +128,7 @@ TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overla
     bool splits;
   };
   const int defaultFragments = s.fragmentsPerPixel;
+  s.tilePlan = VolumeTilePlan::Expected;  // the expected load's tiles, and their halving
   for (const Case c : {Case{5 * 96, defaultFragments, 11, false}, Case{40, defaultFragments, 11, false},
                        Case{96 * 16, 1, 5, true}}) {
     INFO("tile of " << c.tilePixels << " pixels, " << c.fragmentsPerPixel << " fragments per pixel");
@@ -180,9 +181,20 @@ TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overla
   CHECK(!expected.volumeTilesCounted);
   CHECK(expected.countedFragments == 0);
   CHECK(expected.volumeRedrawnTiles > 1);
-  // an explicit scene under the automatic plan counts at its first overflow: that one tile is
-  // drawn again, the rows from it up are counted and cut into bands, and none of those overflows
+  // Under the automatic plan an explicit scene counts first while the last count found the
+  // expected plan too small. A roomy frame (bands of 5 rows, 16 fragments a pixel) stops that:
   s.tilePlan = VolumeTilePlan::Auto;
+  s.fragmentsPerPixel = defaultFragments;
+  s.volumePoolBytes = 16.0L + 28.0L * defaultFragments * 5 * 96;
+  RenderStats roomy, afterRoomy;
+  renderer.render(scene.particles, s, &roomy);  // counted (the Renderer's first count) or not
+  renderer.render(scene.particles, s, &afterRoomy);
+  CHECK(!afterRoomy.volumeTilesCounted);
+  CHECK(afterRoomy.volumeRedrawnTiles == 0);
+  // then the crowded pool again: the count waits for the first overflow. That one tile is drawn
+  // again, the rows from it up are counted and cut into bands, and none of those overflows.
+  s.fragmentsPerPixel = 1;
+  s.volumePoolBytes = 16.0L + 28.0L * 512;
   RenderStats automatic;
   const Image automaticImage = renderer.render(scene.particles, s, &automatic);
   std::printf("[volume tiles] automatic plan: %zu tiles resolved (%zu split; expected plan %zu, %zu split), %zu of %zu "
@@ -211,16 +223,26 @@ TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overla
   CHECK(nextFrame.volumeRedrawnTiles == 0);
   CHECK(nextFrame.countedFragments == whole.fragments);
   CHECK(nextImage.rgba == reference.rgba);
-  // a frame whose count finds the expected plan big enough (bands of 5 rows, 16 fragments a
-  // pixel) stops the counting: the frame after it keeps the expected plan uncounted
+  // a frame whose count finds the expected plan big enough stops the counting: the frame after
+  // it keeps the expected plan uncounted
   s.fragmentsPerPixel = defaultFragments;
   s.volumePoolBytes = 16.0L + 28.0L * defaultFragments * 5 * 96;
-  RenderStats roomy, afterRoomy;
-  renderer.render(scene.particles, s, &roomy);
-  renderer.render(scene.particles, s, &afterRoomy);
-  CHECK(roomy.volumeTilesCounted);
-  CHECK(!afterRoomy.volumeTilesCounted);
-  CHECK(afterRoomy.volumeRedrawnTiles == 0);
+  RenderStats roomyCounted, roomyAfter;
+  renderer.render(scene.particles, s, &roomyCounted);
+  renderer.render(scene.particles, s, &roomyAfter);
+  CHECK(roomyCounted.volumeTilesCounted);
+  CHECK(!roomyAfter.volumeTilesCounted);
+  CHECK(roomyAfter.volumeRedrawnTiles == 0);
+  // a Renderer's first frame under the automatic plan counts first
+  RenderFixture fresh = RenderFixture::synthetic(DensityModel::Noise);
+  s.fragmentsPerPixel = 1;
+  s.volumePoolBytes = 16.0L + 28.0L * 512;
+  RenderStats first;
+  const Image firstImage = fresh.renderer.render(scene.particles, s, &first);
+  CHECK(first.volumeTilesCounted);
+  CHECK(first.volumeRedrawnTiles == 0);
+  CHECK(first.countedFragments == whole.fragments);
+  CHECK(firstImage.rgba == reference.rgba);
 
   // A pool of 64 nodes, fewer than the busiest rows hold: those rows are bands of one row that
   // overflow, and run() splits them as any overflowed tile, so the image stays exact.
@@ -251,6 +273,7 @@ TEST_CASE("volume tiles: a 1920x1080 volume render fits the GL's storage block l
   s.view = resolveView(scene, {});
   s.blend = BlendMode::Volume;
   s.downscale = 2;  // the seed's Table 1: particles at half resolution
+  s.tilePlan = VolumeTilePlan::Expected;  // the tiles of the expected load, which the limit sizes
   RenderStats stats;
   const Image image = renderer.render(scene.particles, s, &stats);
   REQUIRE(image.width == 1920);

@@ -38,11 +38,11 @@ inline constexpr int kDefaultFragmentsPerPixel = 16;
 // test, 14% of the particle pass's time on the 1419-particle patch, after which a tile overflows
 // only where one row alone holds more fragments than the pool). Auto counts first for generated
 // cloudscapes, whose fragments crowd toward the horizon, so that the expected load's tiles
-// overflow there and their first draws are shaded for nothing; explicit particle lists keep the
-// expected plan until a tile overflows, then count the rows not drawn yet and plan them as
-// bands (VolumeResolve::run), so that a scene that never overflows pays no count
-// (docs/BENCHMARKS.md, "Screen tiles of a cloudscape"). Expected never counts: an overflowed
-// tile is split in halves, drawn again.
+// overflow there and their first draws are shaded for nothing; explicit particle lists count
+// first in a Renderer's first frame and while the last count found the expected plan too small,
+// and otherwise at a tile's first overflow, the rows not drawn yet (VolumeResolve::run), so that
+// a scene that never overflows pays one count (docs/BENCHMARKS.md, "Screen tiles of a
+// cloudscape"). Expected never counts: an overflowed tile is split in halves, drawn again.
 enum class VolumeTilePlan { Auto, Counted, Expected };
 // "auto" / "counted" / "expected"; UsageError otherwise.
 VolumeTilePlan parseVolumeTilePlan(const std::string& text);

@@ -58,9 +58,11 @@ struct Renderer::Impl {
   // The particle buffer, kept from frame to frame while its size holds: a new one costs the GL a
   // fresh allocation, and llvmpipe its page faults inside the draw.
   std::unique_ptr<FloatRenderTarget> target;
-  // VolumeTilePlan::Auto: the last frame's fragments overflowed the expected tile plan, so this
-  // frame counts them before it draws (VolumeResolve::planBands) rather than at its first overflow.
-  bool countFirst = false;
+  // VolumeTilePlan::Auto: count a frame's fragments before it draws (VolumeResolve::planBands)
+  // rather than at its first overflow. Each count sets it to whether the expected tile plan was
+  // too small for the load; it starts true, so that a single frame (one `render`) of a load that
+  // overflows is planned before anything is drawn, and a load that fits stops counting after one.
+  bool countFirst = true;
 
   Impl(GlContext& c, const io::LutSet& luts)
       : context(c),
@@ -214,8 +216,8 @@ struct Renderer::Impl {
           countTile);
       // Auto: the next frame counts first while this one's fragments overflow the expected plan
       // (a frame's load is much like the last's; a count that finds no overflow stops it)
-      countFirst = s.tilePlan == VolumeTilePlan::Auto && volume.counts().countedPlan &&
-                   volume.counts().expectedPlanOverflows;
+      if (s.tilePlan == VolumeTilePlan::Auto && volume.counts().countedPlan)
+        countFirst = volume.counts().expectedPlanOverflows;
       if (stats) {
         const VolumeResolve::Counts c = volume.counts();
         stats->fragments = c.fragments;
