@@ -67,7 +67,7 @@ int runRender(int argc, char** argv) {
     ("fragments-per-pixel", "volume blending: node pool per particle-buffer pixel, the expected load that sizes the screen tiles", cxxopts::value<int>()->default_value("16"))
     ("tile-plan", "volume blending: plan the screen tiles from the expected load (expected) or from the fragments counted "
      "first (counted); auto counts first for cloudscapes, and for particle lists in the first frame and while frames "
-     "overflow, otherwise at a tile's overflow", cxxopts::value<std::string>()->default_value("auto"))
+     "overflow (unless their screen rectangles fit one tile), otherwise at a tile's overflow", cxxopts::value<std::string>()->default_value("auto"))
     ("volume-pool-mib", "volume blending: node pool budget of one screen tile in MiB (capped by the GL's storage block limit)", cxxopts::value<double>()->default_value("128"))
     ("no-occlusion", "constant sunlight (no light-space occlusion, no sun volume shadows)")
     ("box-proxies", "rasterise every particle as its bounding box, not the polygon around its outline seen from afar (the same image, more fragments: for timing)")

@@ -40,8 +40,9 @@ inline constexpr int kDefaultFragmentsPerPixel = 16;
 // cloudscapes, whose fragments crowd toward the horizon, so that the expected load's tiles
 // overflow there and their first draws are shaded for nothing; explicit particle lists count
 // first in a Renderer's first frame and while the last count found the expected plan too small,
-// and otherwise at a tile's first overflow, the rows not drawn yet (VolumeResolve::run), so that
-// a scene that never overflows pays one count (docs/BENCHMARKS.md, "Screen tiles of a
+// unless the particles' screen rectangles (scene::pixelFootprintBound) fit one tile's pool, and
+// otherwise at a tile's first overflow, the rows not drawn yet (VolumeResolve::run), so that a
+// scene that never overflows pays at most one count (docs/BENCHMARKS.md, "Screen tiles of a
 // cloudscape"). Expected never counts: an overflowed tile is split in halves, drawn again.
 enum class VolumeTilePlan { Auto, Counted, Expected };
 // "auto" / "counted" / "expected"; UsageError otherwise.
@@ -164,6 +165,7 @@ struct RenderStats {
   std::size_t volumeRedrawnTiles = 0;  // volume: tiles over the pool's room, undone and split in two
   std::size_t countedFragments = 0;  // volume: fragments counted to plan the tiles (VolumeTilePlan)
   bool volumeTilesCounted = false;   // volume: the tiles were planned from countedFragments
+  std::size_t fragmentBound = 0;     // explicit particles: scene::pixelFootprintBound of the frame
   std::size_t volumePoolBytes = 0;   // volume: bytes of the node pool (one tile's)
   std::size_t tileOverflow = 0;      // occlusion: cover-bin entries dropped (render/LightOcclusion.h)
   std::size_t sunFootprintOverflow = 0;  // sun volume: particle-cascade pairs left to a coarser cascade

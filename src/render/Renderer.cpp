@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -23,6 +24,7 @@
 #include "render/SunVolumeGrid.h"
 #include "render/Upscale.h"
 #include "scene/CloudscapeGrid.h"
+#include "scene/PixelFootprint.h"
 #include "render/VolumeResolve.h"
 
 namespace cloudlut::render {
@@ -62,6 +64,7 @@ struct Renderer::Impl {
   // rather than at its first overflow. Each count sets it to whether the expected tile plan was
   // too small for the load; it starts true, so that a single frame (one `render`) of a load that
   // overflows is planned before anything is drawn, and a load that fits stops counting after one.
+  // A frame whose particles' screen rectangles fit one tile's pool is not counted at all.
   bool countFirst = true;
 
   Impl(GlContext& c, const io::LutSet& luts)
@@ -174,8 +177,11 @@ struct Renderer::Impl {
 
   // Shading and blending at 1/downscale resolution, the volume resolve, the upscale, read-back.
   // `cloudscape`: generated (VolumeTilePlan::Auto counts its fragments for the tiles' plan).
+  // `fragmentBound`: at least the fragments the particle pass can store (scene::
+  // pixelFootprintBound; the largest size_t when unknown): under Auto, a frame that fits one tile of the
+  // expected plan is not counted.
   Image draw(std::size_t count, bool useOrder, float farPlane, const RenderSettings& s, Built built, bool cloudscape,
-             RenderStats* stats) {
+             RenderStats* stats, std::size_t fragmentBound = std::numeric_limits<std::size_t>::max()) {
     const bool sun = built.sun;
     const int w = (s.width + s.downscale - 1) / s.downscale, h = (s.height + s.downscale - 1) / s.downscale;
     requireTargetSize(w, h, s);
@@ -197,8 +203,9 @@ struct Renderer::Impl {
     gl.ClearBufferfv(GL_COLOR, 1, clearDistance);
 
     const Stopwatch drawClock;
-    const bool counted = s.tilePlan == VolumeTilePlan::Counted ||
-                         (s.tilePlan == VolumeTilePlan::Auto && (cloudscape || countFirst));
+    const bool counted =
+        s.tilePlan == VolumeTilePlan::Counted ||
+        (s.tilePlan == VolumeTilePlan::Auto && (cloudscape || (countFirst && fragmentBound > volume.expectedTileNodes())));
     if (blendVolume && counted && volume.tiling().count() > 1) {
       // More than one tile: plan them from the fragments themselves (VolumeResolve::planBands).
       particles.countFragments(count, useOrder, farPlane, w, h, s);
@@ -277,7 +284,10 @@ struct Renderer::Impl {
     const Built built = illuminate(list.size(), needsSunVolume(lit) ? sunGridFor(list, lit) : SunVolumeGrid{},
                                    needsZenithVolume(lit) ? zenithGridFor(list, lit) : SunVolumeGrid{}, lit, stats,
                                    diffusionGridFor(list, lit));
-    return draw(list.size(), false, farPlane, lit, built, false, stats);
+    const int w = (s.width + s.downscale - 1) / s.downscale, h = (s.height + s.downscale - 1) / s.downscale;
+    const std::size_t bound = scene::pixelFootprintBound(list, scene::CameraFrame(s.view.camera, w, h));
+    if (stats) stats->fragmentBound = bound;
+    return draw(list.size(), false, farPlane, lit, built, false, stats, bound);
   }
 
   Image renderCloudscape(const scene::CloudType& cloud, const scene::QualityPreset& q, const RenderSettings& s,

@@ -156,6 +156,8 @@ VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel
   return tiling_;
 }
 
+std::size_t VolumeResolve::expectedTileNodes() const { return (tiling_.poolBytes - 4 * kCounterWords) / kNodeBytes; }
+
 std::vector<double> VolumeResolve::countedRows(GLuint countTexture) {
   // the rows' sums on the GPU (volume_row_counts.comp.glsl), so that only a word per row is read
   // back, not the whole RGBA32F texture
@@ -180,12 +182,14 @@ void VolumeResolve::planBandsFrom(const std::vector<double>& rows, int firstRow)
   // Would prepare's tiles have overflowed? Counted from the first overflow up, one did. Counted
   // from the bottom, each band of its rows against its pool; tiles that cut rows into runs are
   // taken to overflow (a row's count does not say how its runs share it).
-  counts_.expectedPlanOverflows = firstRow > 0 || tiling_.columns > 1;
-  const double expectedCapacity = static_cast<double>((tiling_.poolBytes - 4 * kCounterWords) / kNodeBytes);
-  for (int y0 = 0; firstRow == 0 && tiling_.columns == 1 && y0 < height_; y0 += tiling_.tileHeight) {
-    double load = 0;
-    for (int y = y0; y < std::min(y0 + tiling_.tileHeight, height_); ++y) load += rows[static_cast<std::size_t>(y)];
-    if (load > expectedCapacity) counts_.expectedPlanOverflows = true;
+  counts_.expectedPlanOverflows = firstRow > 0;
+  if (firstRow == 0) {
+    const double capacity = static_cast<double>(expectedTileNodes());
+    for (const Rect& t : tiles_) {  // still prepare's
+      double load = 0;
+      for (int y = t.y0; y < t.y1; ++y) load += rows[static_cast<std::size_t>(y)];
+      if (t.x0 != 0 || t.x1 != width_ || load > capacity) counts_.expectedPlanOverflows = true;
+    }
   }
   const std::size_t nodes = static_cast<std::size_t>((budgetBytes_ - 4.0L * kCounterWords) / kNodeBytes);
   const std::size_t listWords = static_cast<std::size_t>(budget_.limitBytes() / 4.0L) - kPixelListHeaderWords;
@@ -245,15 +249,15 @@ void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawT
       // Undo the tile: its fallback colour (cleared as the frame was) and its lists. The
       // distance channel is a minimum, which a second draw leaves unchanged.
       const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-      gl_.ClearTexSubImage(colourTexture, 0, r.x0, r.y0, 0, w, h, 1, GL_RGBA, GL_FLOAT, clear);
       gl_.ClearTexSubImage(heads_, 0, r.x0, r.y0, 0, w, h, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &kListEnd);
-      fullBarrier(gl_);
       if (countTile && !counts_.countedPlan && counts_.redrawnTiles == 0 && r.x0 == 0 && r.x1 == width_) {
         // The expected plan's first overflow, on a band of whole rows: the rows below are
-        // resolved, the rows from here up not drawn yet. Count their fragments (the colour
-        // texture's red channel there is cleared) and plan them as bands, as planBands does.
+        // resolved, the rows from here up (this tile's included) not drawn yet. Count their
+        // fragments into the colour texture's red channel there, cleared, and plan them as
+        // bands, as planBands does.
         const int rows = height_ - r.y0;
         gl_.ClearTexSubImage(colourTexture, 0, 0, r.y0, 0, width_, rows, 1, GL_RGBA, GL_FLOAT, clear);
+        fullBarrier(gl_);
         gl_.Enable(GL_SCISSOR_TEST);
         gl_.Scissor(0, r.y0, width_, rows);
         countTile();
@@ -266,6 +270,8 @@ void VolumeResolve::run(GLuint colourTexture, const std::function<void()>& drawT
         ++counts_.redrawnTiles;
         continue;
       }
+      gl_.ClearTexSubImage(colourTexture, 0, r.x0, r.y0, 0, w, h, 1, GL_RGBA, GL_FLOAT, clear);
+      fullBarrier(gl_);
       Rect a = r, b = r;
       if (w >= h)
         a.x1 = b.x0 = r.x0 + w / 2;

@@ -163,6 +163,9 @@ class VolumeResolve {
   Counts counts() const { return counts_; }
   // prepare's tiling (the expected load's plan), which planBands does not change.
   const VolumeTiling& tiling() const { return tiling_; }
+  // Fragments one tile of prepare's plan holds (its pool's nodes): a frame with no more fragments
+  // than that cannot overflow it.
+  std::size_t expectedTileNodes() const;
   // Bytes of the node pool run() fills, one tile's: the tiling's, or planBands' whole budget.
   std::size_t poolBytes() const { return poolBytes_; }
   // Seconds the resolves of the last run took (glFinish each).

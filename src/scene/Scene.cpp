@@ -371,6 +371,16 @@ glm::vec3 CameraFrame::rayDirection(float px, float py) const {
   return glm::normalize(forward_ + x * right_ + y * up_);
 }
 
+glm::vec3 CameraFrame::toCamera(const glm::vec3& p) const {
+  const glm::vec3 q = p - eye_;
+  return {glm::dot(q, right_), glm::dot(q, up_), glm::dot(q, forward_)};
+}
+
+glm::vec2 CameraFrame::imagePoint(float tx, float ty) const {
+  return {(tx / (tanHalfFov_ * aspect_) + 1.0f) * 0.5f * static_cast<float>(width_),
+          (1.0f - ty / tanHalfFov_) * 0.5f * static_cast<float>(height_)};
+}
+
 glm::mat4 CameraFrame::viewMatrix() const { return glm::lookAt(eye_, eye_ + forward_, up_); }
 
 glm::mat4 CameraFrame::projectionMatrix(float nearPlane, float farPlane) const {

@@ -140,6 +140,13 @@ class CameraFrame {
   glm::vec3 forward() const { return forward_; }
   // Unit direction of the ray through the image point (px, py) in pixel units.
   glm::vec3 rayDirection(float px, float py) const;
+  // The world point p in the camera's frame: x right, y up, z along the view (world units).
+  glm::vec3 toCamera(const glm::vec3& p) const;
+  // The image point (pixel units, as rayDirection takes them) of the camera-frame direction
+  // (tx, ty, 1): rayDirection's inverse for a point at tx = x/z, ty = y/z.
+  glm::vec2 imagePoint(float tx, float ty) const;
+  int width() const { return width_; }
+  int height() const { return height_; }
   glm::mat4 viewMatrix() const;
   glm::mat4 projectionMatrix(float nearPlane, float farPlane) const;
 
