@@ -31,10 +31,15 @@ constexpr int kDiffusionUnit = 5;
 
 // The particle program's configuration (particle.frag.glsl, particle_detail.glsl): what the
 // settings and the frame's volumes ask of the shader, as #defines.
-std::string configurationDefines(const RenderSettings& s, bool volume, bool sunBuilt, bool chordMap) {
+// A volume the frame did not build is not read at all: its reads would find nothing (no cloud
+// above or below, no diffusion field) and cost every fragment their texture fetches all the same.
+std::string configurationDefines(const RenderSettings& s, bool volume, bool sunBuilt, bool chordMap, bool zenithBuilt,
+                                 bool diffusionBuilt) {
   return glslDefine("PARTICLE_TERMS", s.terms) + glslDefine("PARTICLE_VOLUME", volume ? 1 : 0) +
          glslDefine("PARTICLE_LIGHTING", s.lighting == LightingModel::Cloud ? 1 : 0) +
          glslDefine("PARTICLE_SUNLIGHT_VOLUME", sunBuilt && s.occlusion && s.sunlight == SunlightModel::Volume ? 1 : 0) +
+         glslDefine("PARTICLE_ZENITH_VOLUME", zenithBuilt ? 1 : 0) +
+         glslDefine("PARTICLE_DIFFUSION", diffusionBuilt ? 1 : 0) +
          glslDefine("PARTICLE_DETAIL_NOISE", s.detail.enabled() ? 1 : 0) + SunVolume::samplingDefines(chordMap);
 }
 
@@ -58,7 +63,7 @@ ParticlePass::ParticlePass(const GlFunctions& gl, const GlContext& context, cons
                            ParticleBuffers& buffers)
     : gl_(gl), buffers_(buffers), tables_(gl, context, luts) {
   // the default configuration's program now, so that a GL that cannot build it fails here
-  programFor(configurationDefines(RenderSettings{}, true, true, true));
+  programFor(configurationDefines(RenderSettings{}, true, true, true, false, true));
   gl_.GenVertexArrays(1, &vao_);
 }
 
@@ -111,7 +116,8 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
 
   // the chord map when it holds every chord (or when no volume was built: it is not read then)
   const bool fromMap = s.sunChordMap && (!sunBuilt || sun.chordMapComplete());
-  const GlProgram& program = programFor(configurationDefines(s, volume, sunBuilt, fromMap));
+  const GlProgram& program =
+      programFor(configurationDefines(s, volume, sunBuilt, fromMap, zenithBuilt, diffusion.built()));
   gl_.UseProgram(program.id());
   const ProgramUniforms uniforms(gl_, program.id());
   bindProxies(uniforms, useOrder, farPlane, width, height, s);

@@ -40,6 +40,8 @@ uniform float uNoDistance;
 const int kVolume = PARTICLE_VOLUME;  // 1: volume-aware blending (the segment goes to the pixel's list)
 const int kLighting = PARTICLE_LIGHTING;  // 0 seed (§4.4, §5.3), 1 cloud
 const int kSunlightVolume = PARTICLE_SUNLIGHT_VOLUME;  // 1: sunlight per shading point (sun volume), 0: per particle
+const int kZenithVolume = PARTICLE_ZENITH_VOLUME;  // 1: the zenith volume is built (0: no cloud above or below)
+const int kDiffusion = PARTICLE_DIFFUSION;  // 1: the diffusion volume is built (0: no field anywhere)
 uniform float uLaterAsymmetry; // mean cosine of the later phase function (diffuseTransmittance)
 uniform float uDiffusionShare; // share of the multiple light from the diffusion volume where it has a field
 uniform float uDiffusionGain;  // the diffusion's calibration (RenderSettings::diffusionGain)
@@ -202,8 +204,9 @@ void main() {
       // that holds the eye the share falls with the square of the seen part of the chord,
       // `front` (1 outside and as the eye enters, so no step): the tables' term holds its short
       // front segment better (docs/LIGHTING.md, "Camera inside a particle").
-      float presence, beside;
-      vec4 field = diffusionFieldAt(xMean, presence, beside);
+      float presence = 0.0, beside = 0.0;
+      vec4 field = vec4(0.0);
+      if (kDiffusion != 0) field = diffusionFieldAt(xMean, presence, beside);
       presence *= front * front;
       if (presence > 0.0) {
         float diffused = uDiffusionGain * chordOpacity(tau) * diffusedRadiance(field.x, field.yzw, -dir, uLaterAsymmetry);
@@ -223,7 +226,7 @@ void main() {
     if (kLighting == 0) {
       ambient = uSkyColor * ambientScale(transmittance, od.y);
     } else {
-      vec2 vertical = zenithOpticalDepths(xMean);
+      vec2 vertical = kZenithVolume != 0 ? zenithOpticalDepths(xMean) : vec2(0.0);
       float share = skyAboveShare(vertical.x, vertical.y, uLaterAsymmetry, dir.y);
       ambient = layeredSkyAmbient(tau, share, uSkyColor, uSkyBelowColor);
     }
