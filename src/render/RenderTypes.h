@@ -116,6 +116,10 @@ struct RenderSettings {
   // The density's detail noise (seed §5.4, core/DetailNoise.h): the optical depth of each chord
   // times the mean of the density factor along it; amplitude 0 = off.
   DetailNoise detail;
+
+  // The particle buffer's size in pixels: width and height over downscale, rounded up.
+  int particleWidth() const { return (width + downscale - 1) / downscale; }
+  int particleHeight() const { return (height + downscale - 1) / downscale; }
 };
 
 // The sunlight each lighting model takes unless told otherwise.

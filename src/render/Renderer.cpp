@@ -183,7 +183,7 @@ struct Renderer::Impl {
   Image draw(std::size_t count, bool useOrder, float farPlane, const RenderSettings& s, Built built, bool cloudscape,
              RenderStats* stats, std::size_t fragmentBound = std::numeric_limits<std::size_t>::max()) {
     const bool sun = built.sun;
-    const int w = (s.width + s.downscale - 1) / s.downscale, h = (s.height + s.downscale - 1) / s.downscale;
+    const int w = s.particleWidth(), h = s.particleHeight();
     requireTargetSize(w, h, s);
     const bool blendVolume = s.blend == BlendMode::Volume;
     if (blendVolume)
@@ -284,7 +284,7 @@ struct Renderer::Impl {
     const Built built = illuminate(list.size(), needsSunVolume(lit) ? sunGridFor(list, lit) : SunVolumeGrid{},
                                    needsZenithVolume(lit) ? zenithGridFor(list, lit) : SunVolumeGrid{}, lit, stats,
                                    diffusionGridFor(list, lit));
-    const int w = (s.width + s.downscale - 1) / s.downscale, h = (s.height + s.downscale - 1) / s.downscale;
+    const int w = s.particleWidth(), h = s.particleHeight();
     const std::size_t bound = scene::pixelFootprintBound(list, scene::CameraFrame(s.view.camera, w, h));
     if (stats) stats->fragmentBound = bound;
     return draw(list.size(), false, farPlane, lit, built, false, stats, bound);
