@@ -25,6 +25,7 @@ namespace cloudlut::render {
   X(PFNGLBINDTEXTUREPROC, BindTexture)                            \
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                        \
   X(PFNGLTEXIMAGE3DPROC, TexImage3D)                              \
+  X(PFNGLTEXBUFFERRANGEPROC, TexBufferRange)                      \
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                        \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                    \
   X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)              \

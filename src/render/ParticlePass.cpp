@@ -18,16 +18,17 @@ namespace {
 const std::vector<std::string> kVertexFiles = {"particle_common.glsl", "particle.vert.glsl"};
 const std::vector<std::string> kFragmentFiles = {
     "cloudlut_geometry.glsl", "cloudlut_phase.glsl", "cloudlut_sampling.glsl", "cloudlut_shading.glsl",
-    "particle_common.glsl", "particle_chord.glsl", "volume_fragments.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
+    "particle_common.glsl", "particle_varyings.glsl", "particle_chord.glsl", "volume_fragments.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
     "sun_chord_map.glsl", "cascade_columns.glsl", "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
     "diffusion_sampling.glsl",
     "cloudlut_detail_noise.glsl", "particle_detail.glsl", "particle.frag.glsl"};
-const std::vector<std::string> kCountFragmentFiles = {"particle_common.glsl", "particle_chord.glsl",
-                                                     "particle_count.frag.glsl"};
+const std::vector<std::string> kCountFragmentFiles = {"particle_common.glsl", "particle_varyings.glsl",
+                                                     "particle_chord.glsl", "particle_count.frag.glsl"};
 constexpr GLsizei kProxyVertices = 36;  // the box's 6 faces × 2 triangles, or the polygon's fan (particle.vert.glsl)
 constexpr int kSunVolumeUnit = 3;      // texture unit after the three tables (ShadingTables)
 constexpr int kZenithVolumeUnit = 4;
-constexpr int kDiffusionUnit = 5;
+constexpr int kDiffusionUnit = 5;       // and 6 (DiffusionVolume::bind)
+constexpr int kSunChordMapUnit = 7;    // and 8 (SunVolume::bindChordMap)
 
 // The particle program's configuration (particle.frag.glsl, particle_detail.glsl): what the
 // settings and the frame's volumes ask of the shader, as #defines.
@@ -131,7 +132,7 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   uniforms.set("uNoDistance", kNoDistance);
   uniforms.set("uDetailNoise", s.detail.packed());
   sun.bind(uniforms, kSunVolumeUnit);
-  sun.bindChordMap();
+  sun.bindChordMap(uniforms, kSunChordMapUnit);
   if (!sunBuilt) uniforms.set("uSunCascades", 0);
   zenith.bind(uniforms, kZenithVolumeUnit, "uZenith");
   if (!zenithBuilt) uniforms.set("uZenithCascades", 0);

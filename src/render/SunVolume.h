@@ -56,8 +56,10 @@ class SunVolume {
   // uSunColumns, uSunLocalCloud, uSunChordOuterThird) on the program in use; `prefix` names another set of them (the zenith volume's
   // "uZenith", zenith_volume_sampling.glsl), whose missing uniforms are left alone.
   void bind(const ProgramUniforms& uniforms, int unit, const std::string& prefix = "uSun") const;
-  // Binds the chord map's two buffers (shaders/sun_chord_map.glsl) for the particle shader.
-  void bindChordMap() const;
+  // Binds the chord map's two buffers as buffer textures (shaders/sun_chord_map.glsl,
+  // uSunChordFootprintTexels and uSunChordTexels) to texture units `unit` and `unit` + 1 of the
+  // program in use, for the particle shader.
+  void bindChordMap(const ProgramUniforms& uniforms, int unit) const;
   // The last build kept every chord it splatted: shaders compiled with samplingDefines(true) may read them.
   bool chordMapComplete() const { return mapped_; }
 
@@ -88,6 +90,8 @@ class SunVolume {
   StorageBuffer footprints_;  // binding 9: per particle and cascade, where its chords are (sun_chord_map.glsl)
   StorageBuffer chords_;      // binding 10: counters, then one vec4 per footprint column
   std::size_t chordsNeeded_ = 0;
+  GLuint footprintTexels_ = 0, chordTexels_ = 0;  // buffer textures over footprints_ and chords_
+  long long maxBufferTexels_ = 0;                 // GL_MAX_TEXTURE_BUFFER_SIZE
   GLuint texture_ = 0;
   glm::ivec3 textureDims_{0};
   SunVolumeGrid grid_;

@@ -1,6 +1,6 @@
 // particle.frag.glsl — shades one particle along one view ray with the tables (seed §4.4, §5.4).
 // Preceded by cloudlut_geometry.glsl, cloudlut_phase.glsl, cloudlut_sampling.glsl,
-// cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl,
+// cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl, particle_varyings.glsl,
 // particle_chord.glsl, volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl, sun_chord_map.glsl,
 // sun_volume_sampling.glsl, zenith_volume_sampling.glsl and diffusion_sampling.glsl.
 // Two lighting models (render/RenderTypes.h, docs/LIGHTING.md): the seed's (kLighting 0) and the
@@ -81,14 +81,11 @@ float angularClosure(float rho, float mu) {
 
 layout(r32ui, binding = 0) uniform coherent uimage2D uHeads;  // volume_fragments.glsl lists
 
-in vec3 vWorld;
-flat in int vParticle;
-
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out float oDistance;
 
 void main() {
-  GpuParticle p = particles[vParticle];
+  GpuParticle p = fragmentParticle();
   mat3 toParticle = particleToUnitSphere(p);
   float rho = p.centerDensity.w;
 

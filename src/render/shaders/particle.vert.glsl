@@ -25,8 +25,11 @@ layout(std430, binding = 1) readonly buffer SortKeys {
   uvec2 sortKeys[];  // (distance bits, particle index), back to front
 };
 
+// particle_varyings.glsl's
 out vec3 vWorld;
 flat out int vParticle;
+flat out vec4 vCenterDensity;
+flat out vec4 vToParticle[3];
 
 const vec3 kBoxCorners[24] = vec3[24](
   vec3( 1, -1, -1), vec3( 1,  1, -1), vec3( 1,  1,  1), vec3( 1, -1,  1),   // +x
@@ -72,5 +75,7 @@ void main() {
   }
   vWorld = p.centerDensity.xyz + toWorld * corner;
   vParticle = index;
+  vCenterDensity = p.centerDensity;
+  vToParticle = p.toParticle;
   gl_Position = uViewProjection * vec4(vWorld, 1.0);
 }

@@ -24,6 +24,19 @@ layout(std430, binding = 10) buffer SunChords {
 
 #define SUN_CHORDS_NONE (-2)
 
+// The same two buffers as buffer textures, for the particle shader (SunVolume::bindChordMap):
+// llvmpipe gathers a texel fetch's lanes with vector inserts, where a storage-buffer read at a
+// per-fragment index runs a bounds-checked scalar loop over the lanes, several times slower.
+uniform isamplerBuffer uSunChordFootprintTexels;  // RGBA32I, one texel per sunChordFootprints[] entry
+uniform samplerBuffer uSunChordTexels;            // RGBA32F, texel 0 the header, then sunChords[]
+
+// sunChordFootprints[particle · SUN_CASCADES_MAX + cascade], read as a texel.
+ivec4 sunChordFootprintTexel(int particle, int cascade) {
+  return texelFetch(uSunChordFootprintTexels, particle * SUN_CASCADES_MAX + cascade);
+}
+// sunChords[at], read as a texel (after the header's).
+vec4 sunChordTexel(int at) { return texelFetch(uSunChordTexels, at + 1); }
+
 // The index in sunChords[] of column ij of footprint fp, or −1 when ij lies outside it (every
 // column of SUN_CHORDS_NONE's empty footprint does).
 int sunChordIndex(ivec4 fp, ivec2 ij) {

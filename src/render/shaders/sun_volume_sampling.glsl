@@ -46,7 +46,7 @@ vec4 sunOpticalDepths(vec3 x, int particle, vec3 centre, mat3 toParticle, float 
   float w0 = min(floor(w), float(uSunDims.z) - 2.0), fw = w - w0;
   float own = 0.0, ownColumn = 0.0;
 #if SUN_CHORD_MAP
-  ivec4 footprint = sunChordFootprints[particle * SUN_CASCADES_MAX + k];
+  ivec4 footprint = sunChordFootprintTexel(particle, k);
 #endif
   for (int n = 0; n < 4; ++n) {
     vec2 corner = vec2(float(n & 1), float(n >> 1));
@@ -56,7 +56,7 @@ vec4 sunOpticalDepths(vec3 x, int particle, vec3 centre, mat3 toParticle, float 
 #if SUN_CHORD_MAP
     int at = sunChordIndex(footprint, ivec2(base + corner));
     if (at < 0) continue;  // outside the footprint, or not splatted into this cascade
-    vec4 chord = sunChords[at];
+    vec4 chord = sunChordTexel(at);
     tau = chord.x;
     wFirst = chord.y;
     wFar = chord.z;

@@ -34,16 +34,25 @@ void storeFragment(uint node, float entry, float exitDistance, float tau, vec3 r
   nodes[base + 6u] = next;
 }
 
+// The resolves read the pool through a buffer texture over the same buffer (R32UI, one texel
+// per word, the four counters first; VolumeResolve binds it to texture unit 0): llvmpipe gathers
+// a texel fetch's lanes with vector inserts, where a storage-buffer read at a per-invocation
+// index runs a bounds-checked scalar loop over the lanes, several times slower.
+uniform usamplerBuffer uFragmentNodeWords;
+const int FRAGMENT_COUNTER_WORDS = 4;
+// Word w of node `node`.
+uint fragmentWord(uint node, uint w) {
+  return texelFetch(uFragmentNodeWords, FRAGMENT_COUNTER_WORDS + int(node * uint(FRAGMENT_NODE_WORDS) + w)).x;
+}
+
 // (entry, exit, τ) of a node, its radiance, and the next node.
 vec3 fragmentSpan(uint node) {
-  uint base = node * uint(FRAGMENT_NODE_WORDS);
-  return vec3(uintBitsToFloat(nodes[base]), uintBitsToFloat(nodes[base + 1u]), uintBitsToFloat(nodes[base + 2u]));
+  return uintBitsToFloat(uvec3(fragmentWord(node, 0u), fragmentWord(node, 1u), fragmentWord(node, 2u)));
 }
 vec3 fragmentRadiance(uint node) {
-  uint base = node * uint(FRAGMENT_NODE_WORDS);
-  return vec3(uintBitsToFloat(nodes[base + 3u]), uintBitsToFloat(nodes[base + 4u]), uintBitsToFloat(nodes[base + 5u]));
+  return uintBitsToFloat(uvec3(fragmentWord(node, 3u), fragmentWord(node, 4u), fragmentWord(node, 5u)));
 }
-uint fragmentNext(uint node) { return nodes[node * uint(FRAGMENT_NODE_WORDS) + 6u]; }
+uint fragmentNext(uint node) { return fragmentWord(node, 6u); }
 
 // PIXEL_LIST_REGIONS lists of pixels of the tile, packed x | y << 16, in regions of pixelCapacity
 // words (the tile's pixel count, set with the counters before each draw): region 0, the pixels

@@ -21,21 +21,19 @@ float expRatio(float x) { return x < 1e-4f ? 1.0f - 0.5f * x : (1.0f - exp(-x)) 
 int compareKeys(float aA, uint nA, float aB, uint nB) {
   if (aA != aB) return aA < aB ? -1 : 1;
   if (nA == nB) return 0;
-  uint baseA = nA * uint(FRAGMENT_NODE_WORDS);
-  uint baseB = nB * uint(FRAGMENT_NODE_WORDS);
   for (uint w = 1u; w < 6u; ++w) {
-    uint x = nodes[baseA + w];
-    uint y = nodes[baseB + w];
+    uint x = fragmentWord(nA, w);
+    uint y = fragmentWord(nB, w);
     if (x != y) return x < y ? -1 : 1;
   }
   return 0;
 }
 
 // A node's entry a (world units along the view ray).
-float segmentEntry(uint node) { return uintBitsToFloat(nodes[node * uint(FRAGMENT_NODE_WORDS)]); }
+float segmentEntry(uint node) { return uintBitsToFloat(fragmentWord(node, 0u)); }
 // Its exit b, kept a little past its entry a, so that κ is finite.
 float segmentExit(uint node, float a) {
-  return max(uintBitsToFloat(nodes[node * uint(FRAGMENT_NODE_WORDS) + 1u]), a + max(1e-6f * abs(a), 1e-9f));
+  return max(uintBitsToFloat(fragmentWord(node, 1u)), a + max(1e-6f * abs(a), 1e-9f));
 }
 // Its exit b, κ and κ·C.
 void segmentTerms(uint node, float a, out float b, out float kappa, out vec3 kappaColor) {
