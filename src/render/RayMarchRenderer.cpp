@@ -27,6 +27,10 @@ struct RayMarchRenderer::Impl {
   StorageBuffer cellStarts, cellParticles;  // the particle cell grid at bindings 1 and 2
   StorageBuffer counters;   // dropped-list and loop-budget pixels at binding 3
   GLuint vao = 0, densityTexture = 0;
+  // buffer textures over particles, cellStarts and cellParticles (raymarch_cells.glsl reads them
+  // as texels), on texture units 1, 2 and 3
+  GLuint texels[3] = {0, 0, 0};
+  long long maxBufferTexels = 0;  // GL_MAX_TEXTURE_BUFFER_SIZE
   int modelKind = 0;  // 0 homogeneous, 1 radial, 2 grid
   int gridRes = 0;
 
@@ -61,6 +65,10 @@ struct RayMarchRenderer::Impl {
                                         -1.0f + step * static_cast<float>(k)));
     }
     densityTexture = createFloatTexture3D(gl, context, "the density grid", gridRes, gridRes, gridRes, 1, grid.data());
+    GLint maxTexels = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    maxBufferTexels = maxTexels;
+    gl.GenTextures(3, texels);
     checkGlError(gl, "creating the ray marcher");
   }
 
@@ -71,6 +79,7 @@ struct RayMarchRenderer::Impl {
       // the context is gone; the members' deletions go nowhere
     }
     gl.DeleteTextures(1, &densityTexture);
+    gl.DeleteTextures(3, texels);
     gl.DeleteVertexArrays(1, &vao);
   }
 
@@ -156,6 +165,19 @@ struct RayMarchRenderer::Impl {
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_3D, densityTexture);
     uniforms.set("uDensity", 0);
+    const auto bindTexels = [&](int unit, GLenum format, std::size_t texelBytes, const StorageBuffer& buffer,
+                                const char* sampler) {
+      if (static_cast<long double>(buffer.bytes()) / texelBytes > static_cast<long double>(maxBufferTexels))
+        throw GlError(std::string("ray marching: ") + sampler + " needs more texels than GL_MAX_TEXTURE_BUFFER_SIZE (" +
+                      std::to_string(maxBufferTexels) + ")");
+      gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+      gl.BindTexture(GL_TEXTURE_BUFFER, texels[unit - 1]);
+      gl.TexBufferRange(GL_TEXTURE_BUFFER, format, buffer.id(), 0, static_cast<GLsizeiptr>(buffer.bytes()));
+      uniforms.set(sampler, unit);
+    };
+    bindTexels(1, GL_RGBA32F, 16, particles, "uParticleTexels");
+    bindTexels(2, GL_R32UI, 4, cellStarts, "uCellStartTexels");
+    bindTexels(3, GL_R32UI, 4, cellParticles, "uCellParticleTexels");
 
     const Stopwatch drawClock;
     gl.BindVertexArray(vao);

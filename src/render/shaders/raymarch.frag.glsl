@@ -105,7 +105,8 @@ void main() {
     for (int k = first; k < hits && viewT0[k] <= tm; ++k) {
       if (tm > viewT1[k]) continue;
       int i = viewIndex[k];
-      sigma += uSigma * particles[i].centerDensity.w * rhoHat(toParticle(i) * (x - particles[i].centerDensity.xyz)) * viewScale[k];
+      vec4 centerDensity = particleCenterDensity(i);
+      sigma += uSigma * centerDensity.w * rhoHat(toParticle(i) * (x - centerDensity.xyz)) * viewScale[k];
     }
     if (sigma > 0.0) {
       vec3 source = vec3(0.0);
@@ -120,8 +121,9 @@ void main() {
           vec3 y = x + (float(j) + 0.5) * sdt * uSun;
           for (int k = 0; k < sHits; ++k) {
             int i = hitIndex[k];
-            tau += uSigma * particles[i].centerDensity.w * rhoHat(toParticle(i) * (y - particles[i].centerDensity.xyz)) *
-                   particles[i].toParticle[0].w * sdt;
+            vec4 centerDensity = particleCenterDensity(i);
+            tau += uSigma * centerDensity.w * rhoHat(toParticle(i) * (y - centerDensity.xyz)) * particleToParticle(i, 0).w *
+                   sdt;
           }
         }
         float sun = 0.0;

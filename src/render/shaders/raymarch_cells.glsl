@@ -7,15 +7,28 @@
 // bounding-sphere radius). render/RayMarchRenderer.cpp #defines MAX_CELLS_PER_AXIS and the most
 // particles kept on a view ray and on a shadow ray, MAX_HITS and MAX_SHADOW_HITS.
 
+// The records and the cell lists are read through buffer textures over their storage buffers
+// (RayMarchRenderer binds them): llvmpipe gathers a texel fetch's lanes with vector inserts, where
+// a storage-buffer read at a per-pixel index runs a bounds-checked scalar loop over the lanes,
+// several times slower (docs/BENCHMARKS.md; the particle renderer reads its own the same way).
+uniform samplerBuffer uParticleTexels;       // RGBA32F, a GpuParticle record every 7 texels
+uniform usamplerBuffer uCellStartTexels;     // R32UI, cellStart[]
+uniform usamplerBuffer uCellParticleTexels;  // R32UI, cellParticle[]
+const int kParticleTexels = 7;  // GpuParticle: centerDensity, toParticle[3], toWorld[3]
+
+// Particle i's centerDensity (texel 0) and toParticle[k] (texel 1 + k).
+vec4 particleCenterDensity(int i) { return texelFetch(uParticleTexels, kParticleTexels * i); }
+vec4 particleToParticle(int i, int k) { return texelFetch(uParticleTexels, kParticleTexels * i + 1 + k); }
+
 mat3 toParticle(int i) {
-  return mat3(particles[i].toParticle[0].xyz, particles[i].toParticle[1].xyz, particles[i].toParticle[2].xyz);
+  return mat3(particleToParticle(i, 0).xyz, particleToParticle(i, 1).xyz, particleToParticle(i, 2).xyz);
 }
 
 // World interval [t0, t1] of the ray (o, d) inside particle i (false when it misses).
 bool interval(int i, vec3 o, vec3 d, out float t0, out float t1) {
-  vec3 c = particles[i].centerDensity.xyz;
+  vec3 c = particleCenterDensity(i).xyz;
   vec3 oc = o - c;
-  float bound = particles[i].toParticle[1].w;
+  float bound = particleToParticle(i, 1).w;
   float bb = dot(oc, d);
   if (dot(oc, oc) - bb * bb > bound * bound) { t0 = t1 = 0.0; return false; }
   mat3 m = toParticle(i);
@@ -29,12 +42,6 @@ bool interval(int i, vec3 o, vec3 d, out float t0, out float t1) {
   return t1 > t0;
 }
 
-layout(std430, binding = 1) readonly buffer CellStarts {
-  uint cellStart[];
-};
-layout(std430, binding = 2) readonly buffer CellParticles {
-  uint cellParticle[];
-};
 uniform vec3 uGridOrigin, uGridCell;
 uniform ivec3 uGridDims;
 
@@ -70,8 +77,8 @@ int particlesOnRay(vec3 o, vec3 d, int maxHits, inout int dropped) {
     bool last = tc1 >= tb || next[axis] < 0 || next[axis] >= uGridDims[axis];
     bool first = visit == 0;
     int c = (cell.z * uGridDims.y + cell.y) * uGridDims.x + cell.x;
-    for (uint k = cellStart[c]; k < cellStart[c + 1]; ++k) {
-      int i = int(cellParticle[k]);
+    for (uint k = texelFetch(uCellStartTexels, c).x; k < texelFetch(uCellStartTexels, c + 1).x; ++k) {
+      int i = int(texelFetch(uCellParticleTexels, int(k)).x);
       float t0, t1;
       if (!interval(i, o, d, t0, t1)) continue;
       if ((t0 < tc0 && !first) || (t0 >= tc1 && !last)) continue;  // its entry lies in another cell
