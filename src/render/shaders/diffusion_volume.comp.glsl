@@ -115,6 +115,23 @@ float scaledAsymmetry() { return deltaEddingtonAsymmetry(uLaterAsymmetry); }
 float smallestSpacing() { return min(uSpacing.x, min(uSpacing.y, uSpacing.z)); }
 
 #if STAGE == 5
+// (k / d, k mod d) for 0 ≤ k < 2^24 and d ≥ 1, from a float quotient corrected by one: exact, as
+// both are exact floats and the rounded quotient lies within one of the true one. llvmpipe has no
+// vector integer division and divides lane by lane, which took about a seventh of a small scene's
+// light-space passes in this loop (docs/BENCHMARKS.md).
+ivec2 quotientAndRemainder(int k, int d) {
+  int q = int(float(k) / float(d));
+  int r = k - q * d;
+  if (r < 0) {
+    q -= 1;
+    r += d;
+  } else if (r >= d) {
+    q += 1;
+    r -= d;
+  }
+  return ivec2(q, r);
+}
+
 // One work group: its invocations take the nodes of one colour in turn (every other one along x,
 // as STAGE 1's dispatch), then wait for each other before the other colour.
 void main() {
@@ -125,7 +142,9 @@ void main() {
   for (int i = 0; i < 2 * uSweeps; ++i) {
     int colour = i & 1;
     for (int k = int(gl_LocalInvocationIndex); k < count; k += WHOLE_GROUP) {
-      ivec3 n = colourNode(ivec3(k % halfX, (k / halfX) % uNodes.y, k / (halfX * uNodes.y)), colour);
+      ivec2 row = quotientAndRemainder(k, halfX);             // (y + Ny·z, x / 2)
+      ivec2 slice = quotientAndRemainder(row.x, uNodes.y);   // (z, y)
+      ivec3 n = colourNode(ivec3(row.y, slice.y, slice.x), colour);
       if (!outside(n)) updateNode(n, gStar, hMin);
     }
     memoryBarrierImage();
