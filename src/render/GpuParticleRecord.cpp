@@ -57,7 +57,10 @@ scene::GridParticle unpackGridParticle(const GpuParticleRecord& r, const scene::
   return gp;
 }
 
-std::string particleRecordDefines() { return glslDefine("GRID_LAYER_LIMIT", kGridLayerLimit); }
+std::string particleRecordDefines() {
+  return glslDefine("GRID_LAYER_LIMIT", kGridLayerLimit) +
+         glslDefine("PARTICLE_RECORD_TEXELS", static_cast<int>(sizeof(GpuParticleRecord) / 16));
+}
 
 void requireParticleRecordLayout(const GlFunctions& gl, GLuint program, const std::string& what) {
   const auto property = [&](const char* variable, GLenum prop) {

@@ -55,7 +55,8 @@ GpuParticleRecord packParticle(const scene::Particle& particle, const glm::vec3&
 scene::GridParticle unpackGridParticle(const GpuParticleRecord& record, const scene::GridParameters& grid,
                                        const glm::vec3& eye);
 
-// The #defines the GLSL record needs (GRID_LAYER_LIMIT).
+// The #defines the GLSL record needs: GRID_LAYER_LIMIT, and PARTICLE_RECORD_TEXELS (vec4 per
+// record, for shaders that read the records as a buffer texture).
 std::string particleRecordDefines();
 
 // GlError naming `what` unless the linked program's Particles block lays records out as

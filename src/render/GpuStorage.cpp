@@ -52,4 +52,20 @@ void StorageBuffer::write(std::size_t offset, std::size_t bytes, const void* dat
   gl_.BufferSubData(GL_SHADER_STORAGE_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
 }
 
+BufferTexels::BufferTexels(const GlFunctions& gl, GLenum format, std::size_t texelBytes)
+    : gl_(gl), format_(format), texelBytes_(texelBytes) {
+  GLint maxTexels = 0;
+  gl_.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  maxTexels_ = maxTexels;
+  gl_.GenTextures(1, &id_);
+}
+
+BufferTexels::~BufferTexels() { gl_.DeleteTextures(1, &id_); }
+
+void BufferTexels::bind(int unit, const StorageBuffer& buffer, std::size_t bytes) const {
+  gl_.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+  gl_.BindTexture(GL_TEXTURE_BUFFER, id_);
+  gl_.TexBufferRange(GL_TEXTURE_BUFFER, format_, buffer.id(), 0, static_cast<GLsizeiptr>(bytes));
+}
+
 }  // namespace cloudlut::render

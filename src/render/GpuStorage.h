@@ -55,6 +55,36 @@ class StorageBuffer {
   std::size_t bytes_ = 0;
 };
 
+// A buffer texture (GL_TEXTURE_BUFFER) over a StorageBuffer, for shaders that read the buffer at
+// indices that differ between invocations. Such a read of a storage block is, on llvmpipe, a
+// bounds-checked scalar loop over the SIMD lanes, one word per lane; a texel fetch at the same
+// indices is gathered with vector inserts, several times faster (docs/BENCHMARKS.md "Storage-buffer
+// reads lane by lane"). The shaders that read buffers this way point here.
+class BufferTexels {
+ public:
+  // Texels of `format`, `texelBytes` bytes each (GL_R32UI 4, GL_RGBA32F and GL_RGBA32I 16).
+  BufferTexels(const GlFunctions& gl, GLenum format, std::size_t texelBytes);
+  ~BufferTexels();
+  BufferTexels(const BufferTexels&) = delete;
+  BufferTexels& operator=(const BufferTexels&) = delete;
+
+  // Whether `bytes` of buffer fit in GL_MAX_TEXTURE_BUFFER_SIZE texels.
+  bool holds(long double bytes) const { return bytes <= maxBytes(); }
+  // GL_MAX_TEXTURE_BUFFER_SIZE texels, in bytes.
+  long double maxBytes() const { return static_cast<long double>(maxTexels_) * static_cast<long double>(texelBytes_); }
+  // Binds the texture to texture unit `unit` over the first `bytes` of `buffer` (its current
+  // storage: call after any reallocation).
+  void bind(int unit, const StorageBuffer& buffer, std::size_t bytes) const;
+  void bind(int unit, const StorageBuffer& buffer) const { bind(unit, buffer, buffer.bytes()); }
+
+ private:
+  const GlFunctions& gl_;
+  GLuint id_ = 0;
+  GLenum format_;
+  std::size_t texelBytes_;
+  long long maxTexels_ = 0;
+};
+
 // Every write of the passes before it visible to every read after it.
 inline void fullBarrier(const GlFunctions& gl) { gl.MemoryBarrier(GL_ALL_BARRIER_BITS); }
 

@@ -27,10 +27,9 @@ struct RayMarchRenderer::Impl {
   StorageBuffer cellStarts, cellParticles;  // the particle cell grid at bindings 1 and 2
   StorageBuffer counters;   // dropped-list and loop-budget pixels at binding 3
   GLuint vao = 0, densityTexture = 0;
-  // buffer textures over particles, cellStarts and cellParticles (raymarch_cells.glsl reads them
-  // as texels), on texture units 1, 2 and 3
-  GLuint texels[3] = {0, 0, 0};
-  long long maxBufferTexels = 0;  // GL_MAX_TEXTURE_BUFFER_SIZE
+  // over particles, cellStarts and cellParticles (raymarch_cells.glsl reads them as texels), on
+  // texture units 1, 2 and 3
+  BufferTexels particleTexels, cellStartTexels, cellParticleTexels;
   int modelKind = 0;  // 0 homogeneous, 1 radial, 2 grid
   int gridRes = 0;
 
@@ -41,13 +40,16 @@ struct RayMarchRenderer::Impl {
         program(linkDrawProgram(gl, {"raymarch.vert.glsl"},
                                 {"cloudlut_phase.glsl", "particle_common.glsl", "raymarch_cells.glsl", "loop_budget.glsl",
                                  "raymarch.frag.glsl"},
-                                "#define PARTICLES_ACCESS readonly\n" + glslDefine("MAX_CELLS_PER_AXIS", kMaxCellsPerAxis) +
+                                "#define PARTICLES_ACCESS readonly\n" + particleRecordDefines() + glslDefine("MAX_CELLS_PER_AXIS", kMaxCellsPerAxis) +
                                     glslDefine("MAX_HITS", kMaxViewHits) + glslDefine("MAX_SHADOW_HITS", kMaxShadowHits),
                                 "ray-march")),
         particles(gl),
         cellStarts(gl),
         cellParticles(gl),
-        counters(gl) {
+        counters(gl),
+        particleTexels(gl, GL_RGBA32F, 16),
+        cellStartTexels(gl, GL_R32UI, 4),
+        cellParticleTexels(gl, GL_R32UI, 4) {
     requireParticleRecordLayout(gl, program.id(), "ray-march program");
     gl.GenVertexArrays(1, &vao);
     modelKind = model.model() == DensityModel::Sphere ? 0 : model.model() == DensityModel::Radial ? 1 : 2;
@@ -65,10 +67,6 @@ struct RayMarchRenderer::Impl {
                                         -1.0f + step * static_cast<float>(k)));
     }
     densityTexture = createFloatTexture3D(gl, context, "the density grid", gridRes, gridRes, gridRes, 1, grid.data());
-    GLint maxTexels = 0;
-    gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-    maxBufferTexels = maxTexels;
-    gl.GenTextures(3, texels);
     checkGlError(gl, "creating the ray marcher");
   }
 
@@ -79,7 +77,6 @@ struct RayMarchRenderer::Impl {
       // the context is gone; the members' deletions go nowhere
     }
     gl.DeleteTextures(1, &densityTexture);
-    gl.DeleteTextures(3, texels);
     gl.DeleteVertexArrays(1, &vao);
   }
 
@@ -165,19 +162,15 @@ struct RayMarchRenderer::Impl {
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_3D, densityTexture);
     uniforms.set("uDensity", 0);
-    const auto bindTexels = [&](int unit, GLenum format, std::size_t texelBytes, const StorageBuffer& buffer,
-                                const char* sampler) {
-      if (static_cast<long double>(buffer.bytes()) / texelBytes > static_cast<long double>(maxBufferTexels))
-        throw GlError(std::string("ray marching: ") + sampler + " needs more texels than GL_MAX_TEXTURE_BUFFER_SIZE (" +
-                      std::to_string(maxBufferTexels) + ")");
-      gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
-      gl.BindTexture(GL_TEXTURE_BUFFER, texels[unit - 1]);
-      gl.TexBufferRange(GL_TEXTURE_BUFFER, format, buffer.id(), 0, static_cast<GLsizeiptr>(buffer.bytes()));
+    const auto bindTexels = [&](int unit, const BufferTexels& texels, const StorageBuffer& buffer, const char* sampler) {
+      if (!texels.holds(static_cast<long double>(buffer.bytes())))
+        throw GlError(std::string("ray marching: ") + sampler + " needs more texels than GL_MAX_TEXTURE_BUFFER_SIZE");
+      texels.bind(unit, buffer);
       uniforms.set(sampler, unit);
     };
-    bindTexels(1, GL_RGBA32F, 16, particles, "uParticleTexels");
-    bindTexels(2, GL_R32UI, 4, cellStarts, "uCellStartTexels");
-    bindTexels(3, GL_R32UI, 4, cellParticles, "uCellParticleTexels");
+    bindTexels(1, particleTexels, particles, "uParticleTexels");
+    bindTexels(2, cellStartTexels, cellStarts, "uCellStartTexels");
+    bindTexels(3, cellParticleTexels, cellParticles, "uCellParticleTexels");
 
     const Stopwatch drawClock;
     gl.BindVertexArray(vao);

@@ -47,17 +47,12 @@ SunVolume::SunVolume(const GlFunctions& gl, const GlContext& context, const Stor
       buffers_(buffers),
       deltas_(gl),
       footprints_(gl),
-      chords_(gl) {
+      chords_(gl),
+      footprintTexels_(gl, GL_RGBA32I, 16),
+      chordTexels_(gl, GL_RGBA32F, 16) {
   // never empty: a program that declares the map may be drawn before any build
   footprints_.ensure(16);
   chords_.ensure(kChordHeaderBytes);
-  GLint maxTexels = 0;
-  gl_.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  maxBufferTexels_ = maxTexels;
-  GLuint texels[2] = {0, 0};
-  gl_.GenTextures(2, texels);
-  footprintTexels_ = texels[0];
-  chordTexels_ = texels[1];
   for (int stage = 0; stage < 3; ++stage) {
     stages_[stage] = linkComputeProgram(gl, kBuildFiles, buildDefines(stage));
     requireParticleRecordLayout(gl, stages_[stage].id(), "sun_volume_build.comp.glsl");
@@ -66,8 +61,6 @@ SunVolume::SunVolume(const GlFunctions& gl, const GlContext& context, const Stor
 
 SunVolume::~SunVolume() {
   if (texture_) gl_.DeleteTextures(1, &texture_);
-  const GLuint texels[2] = {footprintTexels_, chordTexels_};
-  gl_.DeleteTextures(2, texels);
 }
 
 std::size_t SunVolume::build(const SunVolumeGrid& grid, std::size_t count, const SplatTable& table,
@@ -142,7 +135,7 @@ bool SunVolume::sizeChordMap(std::size_t count, const std::function<void(int)>& 
   const long double footprintBytes =
       static_cast<long double>(std::max<std::size_t>(count, 1)) * kSunCascadesMax * 16.0L;
   // (both are read as buffer textures too, bindChordMap: one texel per 16 bytes)
-  if (footprintBytes > budget_.limitBytes() || footprintBytes / 16.0L > maxBufferTexels_) return false;
+  if (footprintBytes > budget_.limitBytes() || !footprintTexels_.holds(footprintBytes)) return false;
   footprints_.ensure(static_cast<std::size_t>(footprintBytes));
   footprints_.bind(kFootprintsBinding);
   // Count the chords (STAGE 2); the map is kept only if the budget holds them all.
@@ -154,7 +147,7 @@ bool SunVolume::sizeChordMap(std::size_t count, const std::function<void(int)>& 
   chords_.read(0, sizeof needed, &needed);
   chordsNeeded_ = needed;
   const long double bytes = kChordHeaderBytes + static_cast<long double>(needed) * kChordBytes;
-  if (bytes > budget_.limitBytes() || needed > static_cast<GLuint>(INT_MAX) || bytes / 16.0L > maxBufferTexels_)
+  if (bytes > budget_.limitBytes() || needed > static_cast<GLuint>(INT_MAX) || !chordTexels_.holds(bytes))
     return false;
   chords_.ensure(static_cast<std::size_t>(bytes));
   const GLuint header[4] = {0, needed, 0, 0};
@@ -180,17 +173,12 @@ void SunVolume::bind(const ProgramUniforms& uniforms, int unit, const std::strin
 }
 
 void SunVolume::bindChordMap(const ProgramUniforms& uniforms, int unit) const {
-  // the buffers' current extent: a build may have reallocated them
-  const auto bindTexels = [&](int u, GLuint texture, GLenum format, const StorageBuffer& buffer, const char* sampler) {
-    gl_.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
-    gl_.BindTexture(GL_TEXTURE_BUFFER, texture);
-    gl_.TexBufferRange(GL_TEXTURE_BUFFER, format, buffer.id(), 0,
-                       static_cast<GLsizeiptr>(std::min<long long>(static_cast<long long>(buffer.bytes()),
-                                                                   maxBufferTexels_ * 16LL)));
-    uniforms.set(sampler, u);
-  };
-  bindTexels(unit, footprintTexels_, GL_RGBA32I, footprints_, "uSunChordFootprintTexels");
-  bindTexels(unit + 1, chordTexels_, GL_RGBA32F, chords_, "uSunChordTexels");
+  // the buffers' current extent (a build may have reallocated them; sizeChordMap kept it within
+  // the texel limit)
+  footprintTexels_.bind(unit, footprints_);
+  uniforms.set("uSunChordFootprintTexels", unit);
+  chordTexels_.bind(unit + 1, chords_);
+  uniforms.set("uSunChordTexels", unit + 1);
 }
 
 std::vector<float> SunVolume::readBack() const {

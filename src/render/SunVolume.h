@@ -90,8 +90,8 @@ class SunVolume {
   StorageBuffer footprints_;  // binding 9: per particle and cascade, where its chords are (sun_chord_map.glsl)
   StorageBuffer chords_;      // binding 10: counters, then one vec4 per footprint column
   std::size_t chordsNeeded_ = 0;
-  GLuint footprintTexels_ = 0, chordTexels_ = 0;  // buffer textures over footprints_ and chords_
-  long long maxBufferTexels_ = 0;                 // GL_MAX_TEXTURE_BUFFER_SIZE
+  BufferTexels footprintTexels_;  // over footprints_, RGBA32I (the particle shader's reads)
+  BufferTexels chordTexels_;      // over chords_, RGBA32F
   GLuint texture_ = 0;
   glm::ivec3 textureDims_{0};
   SunVolumeGrid grid_;

@@ -20,7 +20,7 @@ constexpr unsigned kResolveGroup = 64;  // the resolves' local_size_x
 constexpr std::size_t kPixelListRegions = kSortedResolveSlots.size() + 2;
 constexpr std::size_t kPixelListHeaderWords = kPixelListRegions + 1;
 constexpr GLuint kHeadsUnit = 0, kColourUnit = 1;  // image units
-constexpr GLuint kNodeWordsTextureUnit = 0;  // uFragmentNodeWords, every resolve's only sampler (its default unit)
+constexpr int kNodeWordsTextureUnit = 0;  // uFragmentNodeWords, every resolve's only sampler (its default unit)
 // The pool (volume_fragments.glsl, block Fragments): count, capacity, overflow, truncated pixels.
 constexpr std::size_t kCounterWords = 4;
 constexpr std::size_t kNodeBytes = 4 * static_cast<std::size_t>(kFragmentNodeWords);
@@ -102,27 +102,25 @@ std::vector<VolumeBand> planVolumeBands(const std::vector<double>& rowFragments,
   return bands;
 }
 
+// The resolve programs' defines: the fragment lists' and their reads (volume_fragments.glsl).
+static std::string resolveDefines() { return VolumeResolve::fragmentDefines() + "#define FRAGMENT_READS\n"; }
+
 VolumeResolve::VolumeResolve(const GlFunctions& gl, const StorageBudget& budget)
-    : gl_(gl), budget_(budget), pool_(gl), cut_(gl), pixelLists_(gl), rowCounts_(gl) {
+    : gl_(gl), budget_(budget), pool_(gl), cut_(gl), pixelLists_(gl), rowCounts_(gl), nodeWords_(gl, GL_R32UI, 4) {
   singleProgram_ = linkComputeProgram(
       gl, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_single.comp.glsl"},
-      fragmentDefines() + glslDefine("STAGES", static_cast<int>(kSortedResolveSlots.size())) +
+      resolveDefines() + glslDefine("STAGES", static_cast<int>(kSortedResolveSlots.size())) +
           glslDefine("SORTED_MAX", kShortListCapacity));
   sortedProgram(0);  // most frames with lists need the first stage; the others link on first use
   longProgram_ = linkComputeProgram(
       gl, {"volume_fragments.glsl", "volume_pieces.glsl", "loop_budget.glsl", "volume_resolve.comp.glsl"},
-      fragmentDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel) +
+      resolveDefines() + glslDefine("MAX_SEGMENTS", kMaxSegmentsPerPixel) +
           glslFloatDefine("OPAQUE_TRANSMITTANCE", kOpaqueTransmittance));
-  GLint maxTexels = 0;
-  gl_.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  maxBufferTexels_ = maxTexels;
-  gl_.GenTextures(1, &nodeWords_);
 }
 
 VolumeResolve::~VolumeResolve() {
   if (heads_) gl_.DeleteTextures(1, &heads_);
   if (unusedHeads_) gl_.DeleteTextures(1, &unusedHeads_);
-  gl_.DeleteTextures(1, &nodeWords_);
 }
 
 std::string VolumeResolve::fragmentDefines() {
@@ -134,7 +132,7 @@ VolumeTiling VolumeResolve::prepare(int width, int height, int fragmentsPerPixel
                                     int shortList) {
   // the resolves read the pool as a buffer texture, one texel per word
   const long double budget = std::min({budgetBytes > 0 ? budgetBytes : kDefaultVolumePoolBytes, budget_.limitBytes(),
-                                       4.0L * static_cast<long double>(maxBufferTexels_)});
+                                       nodeWords_.maxBytes()});
   tiling_ = planVolumeTiles(width, height, fragmentsPerPixel, budget);
   budget_.require(static_cast<long double>(tiling_.poolBytes),
                   "volume blending of a " + std::to_string(tiling_.tileWidth) + "x" + std::to_string(tiling_.tileHeight) +
@@ -320,7 +318,7 @@ const GlProgram& VolumeResolve::sortedProgram(std::size_t stage) {
   if (!program.id())
     program =
         linkComputeProgram(gl_, {"volume_fragments.glsl", "volume_pieces.glsl", "volume_resolve_sorted.comp.glsl"},
-                           fragmentDefines() + sortedResolveDefines(stage));
+                           resolveDefines() + sortedResolveDefines(stage));
   return program;
 }
 
@@ -331,9 +329,7 @@ void VolumeResolve::resolveTile(GLuint colourTexture) {
   cut_.bind(kCutBinding);
   pixelLists_.bind(kPixelListsBinding);
   pool_.bind(kPoolBinding);
-  gl_.ActiveTexture(GL_TEXTURE0 + kNodeWordsTextureUnit);
-  gl_.BindTexture(GL_TEXTURE_BUFFER, nodeWords_);
-  gl_.TexBufferRange(GL_TEXTURE_BUFFER, GL_R32UI, pool_.id(), 0, static_cast<GLsizeiptr>(poolBytes_));
+  nodeWords_.bind(kNodeWordsTextureUnit, pool_, poolBytes_);
   gl_.BindImageTexture(kHeadsUnit, heads_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
   gl_.BindImageTexture(kColourUnit, colourTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   // Region 0: the pixels the particle pass listed. The first resolve composites the lists of one

@@ -186,8 +186,7 @@ class VolumeResolve {
   GlProgram rowCountsProgram_;  // linked on first use
   int shortList_ = kShortListCapacity;
   GLuint heads_ = 0, unusedHeads_ = 0;
-  GLuint nodeWords_ = 0;          // buffer texture over pool_ for the resolves (volume_fragments.glsl)
-  long long maxBufferTexels_ = 0;  // GL_MAX_TEXTURE_BUFFER_SIZE: caps the pool's words
+  BufferTexels nodeWords_;  // over pool_, R32UI, for the resolves (volume_fragments.glsl); caps the pool
   int width_ = 0, height_ = 0;
   VolumeTiling tiling_;
   std::size_t poolBytes_ = 0;  // the plan's pool (poolBytes())

@@ -1,10 +1,9 @@
 // particle_varyings.glsl — what particle.vert.glsl hands the particle pass's fragment shaders
 // (particle.frag.glsl, particle_count.frag.glsl). Preceded by particle_common.glsl.
 //
-// The particle's record travels as flat varyings, not as an index to read in the fragment shader:
-// llvmpipe reads a storage buffer at a per-fragment index in a bounds-checked scalar loop over
-// its SIMD lanes, while a flat varying is one value broadcast to them (the record's read was
-// about a seventh of cluster36's frame, docs/BENCHMARKS.md).
+// The particle's record travels as flat varyings, one value for all the fragments of a SIMD batch,
+// not as an index to read the storage buffer at in the fragment shader, which llvmpipe does lane
+// by lane (render/GpuStorage.h, BufferTexels; the read was about a seventh of cluster36's frame).
 
 in vec3 vWorld;                // the proxy's point (world)
 flat in int vParticle;         // the particle's index in the particle buffer

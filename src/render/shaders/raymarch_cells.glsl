@@ -8,17 +8,14 @@
 // particles kept on a view ray and on a shadow ray, MAX_HITS and MAX_SHADOW_HITS.
 
 // The records and the cell lists are read through buffer textures over their storage buffers
-// (RayMarchRenderer binds them): llvmpipe gathers a texel fetch's lanes with vector inserts, where
-// a storage-buffer read at a per-pixel index runs a bounds-checked scalar loop over the lanes,
-// several times slower (docs/BENCHMARKS.md; the particle renderer reads its own the same way).
-uniform samplerBuffer uParticleTexels;       // RGBA32F, a GpuParticle record every 7 texels
+// (RayMarchRenderer binds them; why: render/GpuStorage.h, BufferTexels).
+uniform samplerBuffer uParticleTexels;       // RGBA32F, a GpuParticle record every PARTICLE_RECORD_TEXELS
 uniform usamplerBuffer uCellStartTexels;     // R32UI, cellStart[]
 uniform usamplerBuffer uCellParticleTexels;  // R32UI, cellParticle[]
-const int kParticleTexels = 7;  // GpuParticle: centerDensity, toParticle[3], toWorld[3]
 
 // Particle i's centerDensity (texel 0) and toParticle[k] (texel 1 + k).
-vec4 particleCenterDensity(int i) { return texelFetch(uParticleTexels, kParticleTexels * i); }
-vec4 particleToParticle(int i, int k) { return texelFetch(uParticleTexels, kParticleTexels * i + 1 + k); }
+vec4 particleCenterDensity(int i) { return texelFetch(uParticleTexels, PARTICLE_RECORD_TEXELS * i); }
+vec4 particleToParticle(int i, int k) { return texelFetch(uParticleTexels, PARTICLE_RECORD_TEXELS * i + 1 + k); }
 
 mat3 toParticle(int i) {
   return mat3(particleToParticle(i, 0).xyz, particleToParticle(i, 1).xyz, particleToParticle(i, 2).xyz);
@@ -77,7 +74,8 @@ int particlesOnRay(vec3 o, vec3 d, int maxHits, inout int dropped) {
     bool last = tc1 >= tb || next[axis] < 0 || next[axis] >= uGridDims[axis];
     bool first = visit == 0;
     int c = (cell.z * uGridDims.y + cell.y) * uGridDims.x + cell.x;
-    for (uint k = texelFetch(uCellStartTexels, c).x; k < texelFetch(uCellStartTexels, c + 1).x; ++k) {
+    uint listEnd = texelFetch(uCellStartTexels, c + 1).x;
+    for (uint k = texelFetch(uCellStartTexels, c).x; k < listEnd; ++k) {
       int i = int(texelFetch(uCellParticleTexels, int(k)).x);
       float t0, t1;
       if (!interval(i, o, d, t0, t1)) continue;

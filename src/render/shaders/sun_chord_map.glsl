@@ -24,9 +24,8 @@ layout(std430, binding = 10) buffer SunChords {
 
 #define SUN_CHORDS_NONE (-2)
 
-// The same two buffers as buffer textures, for the particle shader (SunVolume::bindChordMap):
-// llvmpipe gathers a texel fetch's lanes with vector inserts, where a storage-buffer read at a
-// per-fragment index runs a bounds-checked scalar loop over the lanes, several times slower.
+// The same two buffers as buffer textures, for the particle shader (SunVolume::bindChordMap; why:
+// render/GpuStorage.h, BufferTexels).
 uniform isamplerBuffer uSunChordFootprintTexels;  // RGBA32I, one texel per sunChordFootprints[] entry
 uniform samplerBuffer uSunChordTexels;            // RGBA32F, texel 0 the header, then sunChords[]
 

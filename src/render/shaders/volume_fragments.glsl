@@ -34,10 +34,10 @@ void storeFragment(uint node, float entry, float exitDistance, float tau, vec3 r
   nodes[base + 6u] = next;
 }
 
-// The resolves read the pool through a buffer texture over the same buffer (R32UI, one texel
-// per word, the four counters first; VolumeResolve binds it to texture unit 0): llvmpipe gathers
-// a texel fetch's lanes with vector inserts, where a storage-buffer read at a per-invocation
-// index runs a bounds-checked scalar loop over the lanes, several times slower.
+#ifdef FRAGMENT_READS
+// The resolves' reads (render/VolumeResolve.cpp defines FRAGMENT_READS for them alone): the pool
+// through a buffer texture over the same buffer (R32UI, one texel per word, the four counters
+// first; VolumeResolve binds it to texture unit 0; why: render/GpuStorage.h, BufferTexels).
 uniform usamplerBuffer uFragmentNodeWords;
 const int FRAGMENT_COUNTER_WORDS = 4;
 // Word w of node `node`.
@@ -53,6 +53,7 @@ vec3 fragmentRadiance(uint node) {
   return uintBitsToFloat(uvec3(fragmentWord(node, 3u), fragmentWord(node, 4u), fragmentWord(node, 5u)));
 }
 uint fragmentNext(uint node) { return fragmentWord(node, 6u); }
+#endif
 
 // PIXEL_LIST_REGIONS lists of pixels of the tile, packed x | y << 16, in regions of pixelCapacity
 // words (the tile's pixel count, set with the counters before each draw): region 0, the pixels
