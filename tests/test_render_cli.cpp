@@ -275,6 +275,7 @@ TEST_CASE("render CLI: absurd sizes and bad options are usage errors", "[render]
       "--sunlight nowhere",
       "--diffusion 1.5",
       "--diffusion 0.5 --diffusion-sweeps 0",
+      "--diffusion-cycles -1",
       "--diffusion 0.5 --diffusion-spacing 0",
       "--eye 0,0,0 --target 0,0,0",
       "--no-such-option",

@@ -1,6 +1,7 @@
 #include "render/DiffusionVolume.h"
 
 #include <algorithm>
+#include <functional>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -22,6 +23,13 @@ constexpr unsigned kGroup = 4;  // the shader's local size per axis
 // Successive over-relaxation of the red-black sweeps: 1.8 reached on the 1419-particle patch in
 // 800 sweeps what plain Gauss-Seidel had not in 1600 (docs/LIGHTING.md).
 constexpr float kOverRelaxation = 1.8f;
+// The correction cycles (docs/LIGHTING.md "Convergence"): plain red-black Gauss-Seidel sweeps
+// before and after each coarse correction (over-relaxation damps the rough error slowly; 1.2 or
+// 3 sweeps did no better), and the sweeps that solve the coarsest level's correction (200 did no
+// better than 10 on the patch).
+constexpr int kCycleSweeps = 2;
+constexpr float kCycleOverRelaxation = 1.0f;
+constexpr int kCoarsestCorrectionSweeps = 10;
 constexpr int kCoarseUnit = 2;  // texture unit of the coarser level's field (prolongation)
 // STAGE 5 (a level's sweeps in one work group of kWholeGroup invocations) for any level of at
 // most kOneGroupNodes nodes (the coarsest, and every level of a small scene's grid, e.g. a single
@@ -61,7 +69,7 @@ void DiffusionVolume::release() {
 }
 
 void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry,
-                            int sweeps, float besideOffset, float fadeNodes) {
+                            int sweeps, int cycles, float besideOffset, float fadeNodes) {
   fadeNodes_ = fadeNodes;
   const SunVolumeGrid& grid = columns.grid();
   const glm::ivec3 n = grid.dims;
@@ -105,6 +113,7 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
     gl_.BindImageTexture(1, levels_[level].field, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
     return d;
   };
+  const auto uniformsOf = [&](int stage) { return ProgramUniforms(gl_, stages_[stage].id()); };
   const auto dispatch = [&](const glm::ivec3& d) {
     gl_.DispatchCompute(groupsFor(d.x, kGroup), groupsFor(d.y, kGroup), groupsFor(d.z, kGroup));
     gl_.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -117,29 +126,62 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
     gl_.BindImageTexture(2, levels_[l - 1].medium, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RG32F);
     dispatch(d);
   }
-  for (int l = levelCount_ - 1; l >= 0; --l) {
-    if (l < levelCount_ - 1) {  // start from the coarser level's solution
-      const glm::ivec3 d = use(4, l);
-      const glm::ivec3 coarse = levels_[l + 1].nodes;
-      gl_.Uniform3i(stages_[4].uniform("uCoarseNodes"), coarse.x, coarse.y, coarse.z);
-      gl_.ActiveTexture(GL_TEXTURE0 + kCoarseUnit);
-      gl_.BindTexture(GL_TEXTURE_3D, levels_[l + 1].field);
-      ProgramUniforms(gl_, stages_[4].id()).set("uCoarseField", kCoarseUnit);
-      dispatch(d);
-    }
-    if (inOneGroup(levels_[l].nodes, sweeps)) {
-      use(5, l);
-      gl_.Uniform1i(stages_[5].uniform("uSweeps"), sweeps);
+  // `count` red-black sweeps on level l, over-relaxed by omega, D kept on a correction's level
+  const auto relax = [&](int l, int count, float omega, bool keepDiffusivity) {
+    const int stage = inOneGroup(levels_[l].nodes, count) ? 5 : 1;
+    const glm::ivec3 d = use(stage, l);
+    uniformsOf(stage).set("uOverRelaxation", omega);
+    gl_.Uniform1i(stages_[stage].uniform("uKeepDiffusivity"), keepDiffusivity ? 1 : 0);
+    if (stage == 5) {
+      gl_.Uniform1i(stages_[5].uniform("uSweeps"), count);
       dispatch(glm::ivec3(1));
-      continue;
+      return;
     }
-    const glm::ivec3 d = use(1, l);
     const glm::ivec3 half((d.x + 1) / 2, d.y, d.z);  // a colour's nodes: every other one along x
-    for (int i = 0; i < sweeps; ++i)
+    for (int i = 0; i < count; ++i)
       for (int colour = 0; colour < 2; ++colour) {
         gl_.Uniform1i(stages_[1].uniform("uColour"), colour);
         dispatch(half);
       }
+  };
+  // level l + 1's field, trilinear, into level l's: as its start (STAGE 4) or added (STAGE 8)
+  const auto prolong = [&](int stage, int l) {
+    const glm::ivec3 d = use(stage, l);
+    const glm::ivec3 coarse = levels_[l + 1].nodes;
+    gl_.Uniform3i(stages_[stage].uniform("uCoarseNodes"), coarse.x, coarse.y, coarse.z);
+    gl_.ActiveTexture(GL_TEXTURE0 + kCoarseUnit);
+    gl_.BindTexture(GL_TEXTURE_3D, levels_[l + 1].field);
+    uniformsOf(stage).set("uCoarseField", kCoarseUnit);
+    dispatch(d);
+  };
+  // The correction cycle on level l (a V-cycle): smooth, hand the residual to the coarser level,
+  // correct from its solve for the error, smooth again. D is the solve's own on the finest level
+  // and kept on the coarser ones, whose equation for the error is linear.
+  const std::function<void(int)> cycle = [&](int l) {
+    const bool correction = l > 0;
+    if (l == levelCount_ - 1) {  // the coarsest: solved by sweeps
+      relax(l, kCoarsestCorrectionSweeps, kOverRelaxation, correction);
+      return;
+    }
+    relax(l, kCycleSweeps, kCycleOverRelaxation, correction);
+    gl_.BindImageTexture(3, flux_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);  // the residual's scratch
+    dispatch(use(6, l));
+    const glm::ivec3 d = use(7, l + 1);
+    const glm::ivec3 fine = levels_[l].nodes;
+    gl_.Uniform3i(stages_[7].uniform("uFineNodes"), fine.x, fine.y, fine.z);
+    gl_.BindImageTexture(3, flux_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+    dispatch(d);
+    cycle(l + 1);
+    prolong(8, l);
+    relax(l, kCycleSweeps, kCycleOverRelaxation, correction);
+  };
+  for (int l = levelCount_ - 1; l >= 0; --l) {
+    if (l < levelCount_ - 1) prolong(4, l);  // start from the coarser level's solution
+    if (l > 0 || cycles == 0 || levelCount_ == 1) {
+      relax(l, sweeps, kOverRelaxation, false);
+      continue;
+    }
+    for (int c = 0; c < cycles; ++c) cycle(0);
   }
   const glm::ivec3 d = use(2, 0);
   gl_.BindImageTexture(3, flux_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);

@@ -30,15 +30,17 @@ class DiffusionVolume {
   // Solves over the nodes of `columns` (one cascade, columns toward +y) lit through `sun` (bound
   // to texture unit `sunUnit` for the solve), for a later phase function of mean cosine g: coarse
   // to fine over up to kLevels levels (each halving the nodes per side), `sweeps` red-black
-  // over-relaxed Gauss-Seidel sweeps on every level (a small level's in a single
-  // dispatch, the same updates in the same order; docs/LIGHTING.md "Convergence"). With
+  // over-relaxed Gauss-Seidel sweeps on each level (a small level's in a single
+  // dispatch, the same updates in the same order), but on the finest level of several, when
+  // `cycles` > 0, that many correction cycles (V-cycles over the coarser levels, D kept there)
+  // in place of its sweeps (docs/LIGHTING.md "Convergence"). With
   // fadeNodes > 0 (a box over part of a wider scene, whose sides cut clouds) the shader fades
   // the field out toward the grid's horizontal sides over that many nodes (diffusion_sampling.glsl).
   // Then, on the next coarser level's nodes (the finest's when it is the only one), the weight
   // of the cloud beside each across the sun, besideOffset (world units) away (cloudBesideWeight):
   // it varies over particle radii, and the finest level's nodes would cost 8 times as much.
   void build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry, int sweeps,
-             float besideOffset, float fadeNodes = 0.0f);
+             int cycles, float besideOffset, float fadeNodes = 0.0f);
   static constexpr int kLevels = 3;
   // Binds the field to `unit`, the weights of the cloud beside to `unit` + 1, and sets
   // diffusion_sampling.glsl's uniforms; without a build
@@ -57,8 +59,8 @@ class DiffusionVolume {
  private:
   const GlFunctions& gl_;
   const GlContext& context_;
-  static constexpr int kStages = 6;
-  GlProgram stages_[kStages];  // diffusion_volume.comp.glsl's STAGE 0 … 5
+  static constexpr int kStages = 9;
+  GlProgram stages_[kStages];  // diffusion_volume.comp.glsl's STAGE 0 … 8
   struct Level {
     GLuint medium = 0, field = 0;  // σ* and q; φ and D
     glm::ivec3 nodes{0};

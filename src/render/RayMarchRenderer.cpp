@@ -164,7 +164,9 @@ struct RayMarchRenderer::Impl {
     uniforms.set("uDensity", 0);
     const auto bindTexels = [&](int unit, const BufferTexels& texels, const StorageBuffer& buffer, const char* sampler) {
       if (!texels.holds(static_cast<long double>(buffer.bytes())))
-        throw GlError(std::string("ray marching: ") + sampler + " needs more texels than GL_MAX_TEXTURE_BUFFER_SIZE");
+        throw GlError(std::string("ray marching: ") + sampler + " needs " + std::to_string(buffer.bytes()) +
+                      " bytes of texels, over GL_MAX_TEXTURE_BUFFER_SIZE's " +
+                      std::to_string(static_cast<unsigned long long>(texels.maxBytes())));
       texels.bind(unit, buffer);
       uniforms.set(sampler, unit);
     };

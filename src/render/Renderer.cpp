@@ -152,6 +152,7 @@ struct Renderer::Impl {
     if (sun && diffusionGrid.grid.cascades == 1 && s.diffusionShare > 0.0f && (s.terms & kTermMultiple) != 0) {
       diffusionColumns.build(diffusionGrid.grid, count, particles.tables().splatTable(), false);
       diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionSweeps,
+                      s.diffusionCycles,
                       diffusionGrid.besideOffset, diffusionGrid.fadeNodes);
     }
     gl.Finish();

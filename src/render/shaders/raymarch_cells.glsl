@@ -5,7 +5,8 @@
 // grid, the last those beyond it), so one listed in several cells is taken once. Preceded by
 // particle_common.glsl (the particle records: M⁻¹ is toParticle, toParticle[1].w the
 // bounding-sphere radius). render/RayMarchRenderer.cpp #defines MAX_CELLS_PER_AXIS and the most
-// particles kept on a view ray and on a shadow ray, MAX_HITS and MAX_SHADOW_HITS.
+// particles kept on a view ray and on a shadow ray, MAX_HITS and MAX_SHADOW_HITS, and
+// particleRecordDefines() (render/GpuParticleRecord.h) a record's texels, PARTICLE_RECORD_TEXELS.
 
 // The records and the cell lists are read through buffer textures over their storage buffers
 // (RayMarchRenderer binds them; why: render/GpuStorage.h, BufferTexels).
