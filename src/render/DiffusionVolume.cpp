@@ -24,8 +24,8 @@ constexpr unsigned kGroup = 4;  // the shader's local size per axis
 // 800 sweeps what plain Gauss-Seidel had not in 1600 (docs/LIGHTING.md).
 constexpr float kOverRelaxation = 1.8f;
 // The correction cycles (docs/LIGHTING.md "Convergence"): plain red-black Gauss-Seidel sweeps
-// before and after each coarse correction (over-relaxation damps the rough error slowly; 1.2 or
-// 3 sweeps did no better), and the sweeps that solve the coarsest level's correction (200 did no
+// before and after each coarse correction (over-relaxation damps the rough error slowly; an
+// over-relaxation of 1.2, or 3 sweeps in place of 2, did no better), and the sweeps that solve the coarsest level's correction (200 did no
 // better than 10 on the patch).
 constexpr int kCycleSweeps = 2;
 constexpr float kCycleOverRelaxation = 1.0f;
@@ -164,12 +164,12 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
       return;
     }
     relax(l, kCycleSweeps, kCycleOverRelaxation, correction);
-    gl_.BindImageTexture(3, flux_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);  // the residual's scratch
+    // the residual and D, written by STAGE 6 into flux_ (scratch until STAGE 2) and read by STAGE 7
+    gl_.BindImageTexture(3, flux_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
     dispatch(use(6, l));
     const glm::ivec3 d = use(7, l + 1);
     const glm::ivec3 fine = levels_[l].nodes;
     gl_.Uniform3i(stages_[7].uniform("uFineNodes"), fine.x, fine.y, fine.z);
-    gl_.BindImageTexture(3, flux_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
     dispatch(d);
     cycle(l + 1);
     prolong(8, l);

@@ -68,7 +68,9 @@ class DiffusionVolume {
   void release();
   Level levels_[kLevels];
   int levelCount_ = 0;
-  GLuint flux_ = 0;  // φ and J on the finest level (the shader's)
+  // φ and J on the finest level (the particle shader's); during the cycles, scratch for the
+  // residual and D handed to the coarser level
+  GLuint flux_ = 0;
   // The weight of the cloud beside each node of one level (diffusion_beside.comp.glsl), for the
   // particle shader's share: the second level, or the only one.
   struct Beside {

@@ -95,12 +95,12 @@ struct RenderSettings {
   // particle shader reads them to take each particle's own ramp out; false: the shader computes
   // them again (the same image, slower: for timing).
   bool sunChordMap = true;
-  // Cloud lighting: the share of the multiple light taken from the
-  // diffusion volume (render/DiffusionVolume.h, docs/LIGHTING.md; 0: the tables' alone, the pass is
-  // skipped; diffusionShareOfMultiple), the sweeps of its solve on each level and the correction
-  // cycles that replace them on the finest (DiffusionVolume::build), and its node spacing in units of the median particle radius. The
-  // gain calibrates the diffusion's low bias: 1/0.855, the prototype's −14.5% on the homogeneous
-  // ρ = 1 sphere against the converged tables.
+  // Cloud lighting: the share of the multiple light taken from the diffusion volume
+  // (render/DiffusionVolume.h, docs/LIGHTING.md; 0: the tables' alone, the pass is skipped;
+  // diffusionShareOfMultiple), the sweeps of its solve on each level, the correction cycles that
+  // replace the sweeps on the finest (DiffusionVolume::build), and its node spacing in units of the
+  // median particle radius. The gain calibrates the diffusion's low bias: 1/0.855, the prototype's
+  // −14.5% on the homogeneous ρ = 1 sphere against the converged tables.
   float diffusionShare = 1.0f;
   int diffusionSweeps = 15;
   int diffusionCycles = 3;

@@ -59,7 +59,7 @@ layout(rg32f, binding = 1) coherent uniform image3D uField;  // φ, D: read by t
 layout(rg32f, binding = 1) uniform image3D uField;   // φ, D
 #endif
 layout(rg32f, binding = 2) uniform image3D uFineMedium;  // STAGE 3: the finer level's σ*, q
-layout(rgba32f, binding = 3) uniform image3D uFlux;   // φ, J (STAGE 2); r (STAGE 6 and 7)
+layout(rgba32f, binding = 3) uniform image3D uFlux;   // φ, J (STAGE 2); r and D (STAGE 6 and 7)
 uniform ivec3 uFineNodes;       // STAGE 3 and 7: the finer level's nodes
 uniform sampler3D uCoarseField; // STAGE 4 and 8: the coarser level's φ (or e), D (texel = node)
 uniform ivec3 uCoarseNodes;     // STAGE 4 and 8
