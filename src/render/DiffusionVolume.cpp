@@ -25,8 +25,8 @@ constexpr unsigned kGroup = 4;  // the shader's local size per axis
 constexpr float kOverRelaxation = 1.8f;
 // The correction cycles (docs/LIGHTING.md "Convergence"): plain red-black Gauss-Seidel sweeps
 // before and after each coarse correction (over-relaxation damps the rough error slowly; an
-// over-relaxation of 1.2, or 3 sweeps in place of 2, did no better), and the sweeps that solve the coarsest level's correction (200 did no
-// better than 10 on the patch).
+// over-relaxation of 1.2, or 3 sweeps in place of 2, did no better), and the sweeps that solve
+// the coarsest level's correction (200 did no better than 10 on the patch).
 constexpr int kCycleSweeps = 2;
 constexpr float kCycleOverRelaxation = 1.0f;
 constexpr int kCoarsestCorrectionSweeps = 10;
