@@ -13,6 +13,7 @@
 
 #include "core/Errors.h"
 #include "render/GlContext.h"
+#include "render/HiddenFragments.h"
 #include "render/Renderer.h"
 #include "render/VolumeResolve.h"
 #include "scene/Scene.h"
@@ -60,6 +61,9 @@ RenderSettings columnSettings(float fovDeg) {
   s.sunlight = SunlightModel::Particle;
   s.occlusion = false;
   s.fragmentsPerPixel = 128;  // room for every fragment
+  // every fragment stored, in the order given: these tests are the resolve's (hidden-fragment
+  // culling, which sorts the particles and stores fewer, has its own below)
+  s.hiddenCulling = false;
   return s;
 }
 
@@ -266,5 +270,53 @@ TEST_CASE("volume order: a pixel beyond the GL's loop budget is reported, never 
     REQUIRE(covered > 10);
     CHECK(wrong <= stats.resolveCutPixels);
     if (n == 300) CHECK(stats.resolveCutPixels == 0);
+  }
+}
+
+TEST_CASE("volume order: fragments hidden behind the stored segments are not shaded, and the image stays alpha "
+          "blending's",
+          "[render][volume]") {
+  // Hidden-fragment culling (render/HiddenFragments.h) against alpha blending in depth order, an
+  // independent path that stores no lists and culls nothing: sixty disjoint spheres down the
+  // view, (a) the nearer thirty dense, each of them alone letting through less than
+  // kHiddenTransmittance; (b) all sixty alike and thin, so that only the sum of the segments in
+  // front hides the rest. In both the culled image stays within kHiddenTransmittance of the
+  // farther light, and fewer than half the fragments are stored that are without culling.
+  RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
+  Renderer& renderer = rig.renderer;
+  RenderSettings s = columnSettings(3.0f);
+  struct Case {
+    const char* name;
+    float nearDensity, farDensity;
+  };
+  for (const Case c : {Case{"opaque front", 40.0f, 0.02f}, Case{"thin stack", 0.25f, 0.25f}}) {
+    INFO(c.name);
+    const std::vector<Particle> ps = column(60, 0.2f, 0.45f, 0.03f, c.nearDensity, c.farDensity);
+    s.blend = BlendMode::Alpha;
+    const Image alpha = renderer.render(ps, s);
+    const Image first = renderer.render({ps.front()}, s);
+    s.blend = BlendMode::Volume;
+    s.hiddenCulling = false;
+    RenderStats all;
+    renderer.render(ps, s, &all);
+    s.hiddenCulling = true;
+    RenderStats culled;
+    const Image volume = renderer.render(ps, s, &culled);
+    REQUIRE(all.fragmentOverflow == 0);
+    REQUIRE(culled.fragmentOverflow == 0);
+    double firstOpacity = 0;
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x) firstOpacity = std::max(firstOpacity, double(first.pixel(x, y)[3]));
+    const WorstDifference worst = worstDifference(volume, alpha);
+    std::printf("[volume order] hidden fragments, %s: the nearest sphere's opacity up to %.6f; %zu fragments "
+                "stored of %zu; max |culled volume - alpha| opacity %.2e, colour (relative) %.2e\n",
+                c.name, firstOpacity, culled.fragments, all.fragments, worst.alpha, worst.colour);
+    if (c.nearDensity == c.farDensity)
+      REQUIRE(firstOpacity < 1.0 - kHiddenTransmittance);  // no single segment hides anything
+    else
+      REQUIRE(firstOpacity > 1.0 - kHiddenTransmittance);
+    CHECK(2 * culled.fragments < all.fragments);
+    CHECK(worst.alpha < kHiddenTransmittance);
+    CHECK(worst.colour < 2.0 * kHiddenTransmittance);
   }
 }

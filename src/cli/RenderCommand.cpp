@@ -70,6 +70,7 @@ int runRender(int argc, char** argv) {
      "overflow (unless their screen rectangles fit one tile), otherwise at a tile's overflow", cxxopts::value<std::string>()->default_value("auto"))
     ("volume-pool-mib", "volume blending: node pool budget of one screen tile in MiB (capped by the GL's storage block limit)", cxxopts::value<double>()->default_value("128"))
     ("no-occlusion", "constant sunlight (no light-space occlusion, no sun volume shadows)")
+    ("shade-hidden", "volume blending: shade and store every fragment, also those behind segments that let through less than 1e-3 (the image within 1e-3 of their light; slower: for timing and checks)")
     ("box-proxies", "rasterise every particle as its bounding box, not the polygon around its outline seen from afar (the same image, more fragments: for timing)")
     ("diffusion", "cloud lighting: the share, 0 to 1, of the multiple light taken from a flux-limited diffusion solve over the particles, or over a box ahead of the camera in a wider scene or a cloudscape (docs/LIGHTING.md; 0: the tables' alone)", cxxopts::value<double>()->default_value("1"))
     ("diffusion-sweeps", "--diffusion: sweeps of the solve on each of its levels (but the finest, with cycles)", cxxopts::value<int>()->default_value("15"))
@@ -138,6 +139,7 @@ int runRender(int argc, char** argv) {
   settings.volumePoolBytes = static_cast<long double>(poolMiB) * 1048576.0L;
   settings.occlusion = args.count("no-occlusion") == 0;
   settings.outlinePolygons = args.count("box-proxies") == 0;
+  settings.hiddenCulling = args.count("shade-hidden") == 0;
   settings.sunChordMap = args.count("computed-chords") == 0;
   const double diffusion = args["diffusion"].as<double>(), spacing = args["diffusion-spacing"].as<double>();
   if (!(diffusion >= 0.0 && diffusion <= 1.0)) throw UsageError("--diffusion: expected a share from 0 to 1");

@@ -7,7 +7,8 @@
 // (the light-space passes take them all: a particle out of view still shadows and makes up the
 // clouds in view), and those in the frustum also as keys (distance from the eye to the centre,
 // record index), the ones the particle pass draws. The sort orders the keys by decreasing
-// distance (ties by index) for alpha blending; volume blending and the occlusion need no order.
+// distance (ties by index) for alpha blending, and for volume blending's hidden-fragment culling,
+// which draws them reversed (render/HiddenFragments.h); the occlusion needs no order.
 #include <cstddef>
 
 #include "render/GlFunctions.h"

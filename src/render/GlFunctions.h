@@ -16,6 +16,10 @@ namespace cloudlut::render {
   X(PFNGLDISABLEPROC, Disable)                                    \
   X(PFNGLCULLFACEPROC, CullFace)                                  \
   X(PFNGLFRONTFACEPROC, FrontFace)                                \
+  X(PFNGLDEPTHFUNCPROC, DepthFunc)                                \
+  X(PFNGLDEPTHMASKPROC, DepthMask)                                \
+  X(PFNGLCOLORMASKPROC, ColorMask)                                \
+  X(PFNGLDRAWARRAYSPROC, DrawArrays)                              \
   X(PFNGLVIEWPORTPROC, Viewport)                                  \
   X(PFNGLSCISSORPROC, Scissor)                                    \
   X(PFNGLFINISHPROC, Finish)                                      \

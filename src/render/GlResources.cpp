@@ -144,9 +144,14 @@ FloatRenderTarget::FloatRenderTarget(const GlFunctions& gl, const GlContext& con
   gl.BindTexture(GL_TEXTURE_2D, distanceTexture_);
   gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, width, height);
   gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, distanceTexture_, 0);
+  gl.GenTextures(1, &depthTexture_);
+  gl.BindTexture(GL_TEXTURE_2D, depthTexture_);
+  gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, width, height);
+  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depthTexture_, 0);
   if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     release();
-    throw GlError("the float framebuffer (RGBA32F + R32F) is not complete on " + context.description());
+    throw GlError("the float framebuffer (RGBA32F + R32F + 32-bit float depth) is not complete on " +
+                  context.description());
   }
   bind();
 }
@@ -165,6 +170,7 @@ void FloatRenderTarget::release() {
   gl_.DeleteFramebuffers(1, &framebuffer_);
   gl_.DeleteTextures(1, &colourTexture_);
   gl_.DeleteTextures(1, &distanceTexture_);
+  gl_.DeleteTextures(1, &depthTexture_);
 }
 
 Image FloatRenderTarget::readBack() const {

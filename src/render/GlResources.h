@@ -93,7 +93,8 @@ class ProgramUniforms {
 
 // The framebuffer both renderers draw into, width × height: colour attachment 0 an RGBA32F
 // texture (radiance, transmittance), attachment 1 an R32F texture (distance; both textures can
-// be bound as images by compute passes). The constructor leaves it bound with both draw buffers
+// be bound as images by compute passes), and a 32-bit float depth attachment (the particle
+// pass's hidden distances, render/HiddenFragments.h). The constructor leaves it bound with both draw buffers
 // enabled and the viewport covering it (GlError if the implementation cannot complete it); the
 // destructor binds the default framebuffer and deletes it.
 class FloatRenderTarget {
@@ -120,7 +121,7 @@ class FloatRenderTarget {
 
   const GlFunctions& gl_;
   int width_, height_;
-  GLuint framebuffer_ = 0, colourTexture_ = 0, distanceTexture_ = 0;
+  GLuint framebuffer_ = 0, colourTexture_ = 0, distanceTexture_ = 0, depthTexture_ = 0;
 };
 
 }  // namespace cloudlut::render

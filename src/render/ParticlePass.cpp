@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "render/DiffusionVolume.h"
+#include "render/HiddenFragments.h"
 #include "render/ShaderSources.h"
 #include "render/SunVolume.h"
 #include "render/VolumeResolve.h"
@@ -21,7 +22,7 @@ const std::vector<std::string> kFragmentFiles = {
     "particle_common.glsl", "particle_varyings.glsl", "particle_chord.glsl", "volume_fragments.glsl", "sun_volume.glsl", "sun_volume_chord.glsl",
     "sun_chord_map.glsl", "cascade_columns.glsl", "sun_volume_sampling.glsl", "zenith_volume_sampling.glsl",
     "diffusion_sampling.glsl",
-    "cloudlut_detail_noise.glsl", "particle_detail.glsl", "particle.frag.glsl"};
+    "cloudlut_detail_noise.glsl", "particle_detail.glsl", "hidden_fragments.glsl", "particle.frag.glsl"};
 const std::vector<std::string> kCountFragmentFiles = {"particle_common.glsl", "particle_varyings.glsl",
                                                      "particle_chord.glsl", "particle_count.frag.glsl"};
 constexpr GLsizei kProxyVertices = 36;  // the box's 6 faces × 2 triangles, or the polygon's fan (particle.vert.glsl)
@@ -35,8 +36,9 @@ constexpr int kSunChordMapUnit = 7;    // and 8 (SunVolume::bindChordMap)
 // A volume the frame did not build is not read at all: its reads would find nothing (no cloud
 // above or below, no diffusion field) and cost every fragment their texture fetches all the same.
 std::string configurationDefines(const RenderSettings& s, bool volume, bool sunBuilt, bool chordMap, bool zenithBuilt,
-                                 bool diffusionBuilt) {
+                                 bool diffusionBuilt, bool hidden) {
   return glslDefine("PARTICLE_TERMS", s.terms) + glslDefine("PARTICLE_VOLUME", volume ? 1 : 0) +
+         glslDefine("PARTICLE_HIDDEN", hidden ? 1 : 0) +
          glslDefine("PARTICLE_LIGHTING", s.lighting == LightingModel::Cloud ? 1 : 0) +
          glslDefine("PARTICLE_SUNLIGHT_VOLUME", sunBuilt && s.occlusion && s.sunlight == SunlightModel::Volume ? 1 : 0) +
          glslDefine("PARTICLE_ZENITH_VOLUME", zenithBuilt ? 1 : 0) +
@@ -62,9 +64,9 @@ void setProxyState(const GlFunctions& gl, GLenum dstColour, GLenum srcAlpha, GLe
 
 ParticlePass::ParticlePass(const GlFunctions& gl, const GlContext& context, const io::LutSet& luts,
                            ParticleBuffers& buffers)
-    : gl_(gl), buffers_(buffers), tables_(gl, context, luts) {
+    : gl_(gl), buffers_(buffers), tables_(gl, context, luts), hidden_(gl) {
   // the default configuration's program now, so that a GL that cannot build it fails here
-  programFor(configurationDefines(RenderSettings{}, true, true, true, false, true));
+  programFor(configurationDefines(RenderSettings{}, true, true, true, false, true, true));
   gl_.GenVertexArrays(1, &vao_);
 }
 
@@ -74,7 +76,8 @@ const GlProgram& ParticlePass::programFor(const std::string& defines) {
   const auto found = programs_.find(defines);
   if (found != programs_.end()) return found->second;
   GlProgram program =
-      linkDrawProgram(gl_, kVertexFiles, kFragmentFiles, VolumeResolve::fragmentDefines() + defines, "particle");
+      linkDrawProgram(gl_, kVertexFiles, kFragmentFiles,
+                      VolumeResolve::fragmentDefines() + HiddenFragments::defines() + defines, "particle");
   requireParticleRecordLayout(gl_, program.id(), "particle program");
   return programs_.emplace(defines, std::move(program)).first->second;
 }
@@ -117,8 +120,9 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
 
   // the chord map when it holds every chord (or when no volume was built: it is not read then)
   const bool fromMap = s.sunChordMap && (!sunBuilt || sun.chordMapComplete());
+  const bool hidden = volume && cullsHidden(s, count);
   const GlProgram& program =
-      programFor(configurationDefines(s, volume, sunBuilt, fromMap, zenithBuilt, diffusion.built()));
+      programFor(configurationDefines(s, volume, sunBuilt, fromMap, zenithBuilt, diffusion.built(), hidden));
   gl_.UseProgram(program.id());
   const ProgramUniforms uniforms(gl_, program.id());
   bindProxies(uniforms, useOrder, farPlane, width, height, s);
@@ -139,7 +143,31 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
   diffusion.bind(uniforms, kDiffusionUnit);
   uniforms.set("uDiffusionShare", s.diffusionShare);
   uniforms.set("uDiffusionGain", s.diffusionGain);
-  if (count > 0) gl_.DrawArraysInstanced(GL_TRIANGLES, 0, kProxyVertices, static_cast<GLsizei>(count));
+  if (!hidden) {
+    if (count > 0) gl_.DrawArraysInstanced(GL_TRIANGLES, 0, kProxyVertices, static_cast<GLsizei>(count));
+  } else {
+    // front to back in kHiddenBatches batches, the hidden distances into the depth buffer between
+    // two (HiddenFragments.h)
+    const float depthScale = 1.0f / farPlane;
+    hidden_.bind();
+    uniforms.set("uHiddenDepthScale", depthScale);
+    uniforms.set("uInstanceCount", static_cast<int>(count));
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.DepthFunc(GL_LESS);
+    gl_.DepthMask(GL_FALSE);
+    const std::size_t batches = static_cast<std::size_t>(kHiddenBatches);
+    for (std::size_t b = 0; b < batches; ++b) {
+      const std::size_t first = count * b / batches, end = count * (b + 1) / batches;
+      if (b > 0) {
+        hidden_.fillDepth(depthScale);
+        gl_.UseProgram(program.id());
+      }
+      uniforms.set("uFirstInstance", static_cast<int>(first));
+      if (end > first) gl_.DrawArraysInstanced(GL_TRIANGLES, 0, kProxyVertices, static_cast<GLsizei>(end - first));
+    }
+    gl_.Disable(GL_DEPTH_TEST);
+    gl_.DepthMask(GL_TRUE);
+  }
   gl_.Finish();
   checkGlError(gl_, "rendering the particles");
 }

@@ -16,6 +16,7 @@
 #include "render/GlFunctions.h"
 #include "render/GlResources.h"
 #include "render/GpuParticleRecord.h"
+#include "render/HiddenFragments.h"
 #include "render/RenderTypes.h"
 #include "render/ShadingTables.h"
 
@@ -34,10 +35,23 @@ class ParticlePass {
 
   const ShadingTables& tables() const { return tables_; }
 
+  // Whether a volume-blended draw of `count` particles culls hidden fragments (settings.
+  // hiddenCulling, at least kHiddenMinParticles): it then wants its records or keys back to front.
+  static bool cullsHidden(const RenderSettings& settings, std::size_t count) {
+    return settings.blend == BlendMode::Volume && settings.hiddenCulling && count >= kHiddenMinParticles;
+  }
+
+  // Empties hidden-fragment culling's per-pixel state for a width × height target (once per frame
+  // of volume-aware blending, before its first tile).
+  void clearHiddenFragments(int width, int height) { hidden_.clear(width, height); }
+
   // Draws the first `count` records into the bound target of width × height pixels (the
   // settings' camera, with the projection's far plane at `farPlane` and its near plane at
   // 1e-6 · farPlane): in the order of the sorted keys when `useOrder`, else in record order.
-  // `volume`: the fragment lists are bound (VolumeResolve::prepare) and receive the segments.
+  // `volume`: the fragment lists are bound (VolumeResolve::prepare) and receive the segments;
+  // when cullsHidden, the order is reversed (the records or keys are to be back to front) and
+  // fragments hidden behind the segments stored before them are not shaded (HiddenFragments.h;
+  // the target's depth buffer is used).
   // `sun`: the sun optical-depth volume of this frame when `sunBuilt` (else every point is
   // unshadowed by it). `zenith`: the zenith optical-depth volume (vertical columns) when
   // `zenithBuilt`, for the cloud lighting's ambient under a sky from above (else no cloud lies
@@ -70,6 +84,7 @@ class ParticlePass {
   ParticleBuffers& buffers_;
   ShadingTables tables_;
   std::map<std::string, GlProgram> programs_;  // by their #defines
+  HiddenFragments hidden_;
   GlProgram countProgram_;                      // countFragments', linked on first use
   GLuint vao_ = 0;
 };

@@ -1,6 +1,7 @@
 #pragma once
 // Upload of explicit particles (a scene's list) into the particle records (GpuParticleRecord.h),
-// in a given order: back to front for alpha blending, as given for volume blending and occlusion.
+// in a given order: back to front for a frame's draw (volume blending draws it reversed), as given
+// for the light-space passes alone.
 #include <cstddef>
 #include <vector>
 

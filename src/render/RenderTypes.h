@@ -87,6 +87,10 @@ struct RenderSettings {
   // volume: the longest list resolved by a sorting network, 0 … kShortListCapacity
   // (VolumeResolve.h; the image is the same up to rounding whatever it is, only the time changes)
   int volumeShortList = kShortListCapacity;
+  // volume: fragments behind segments that let through less than 10⁻³ are not shaded
+  // (HiddenFragments.h; at least 16 particles); the image changes by at most that share of their
+  // radiance
+  bool hiddenCulling = true;
   // Particles seen from afar are rasterised as a polygon around their outline, those close by as
   // their bounding box (shaders/particle.vert.glsl); false: every particle as its box. The image
   // is the same up to rounding either way; the polygon gives llvmpipe fewer fragments to discard.

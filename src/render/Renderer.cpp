@@ -15,6 +15,7 @@
 #include "render/GlResources.h"
 #include "render/GpuParticleRecord.h"
 #include "render/GpuStorage.h"
+#include "render/HiddenFragments.h"
 #include "render/LightOcclusion.h"
 #include "render/ParticlePass.h"
 #include "render/ParticleUpload.h"
@@ -187,10 +188,12 @@ struct Renderer::Impl {
     const int w = s.particleWidth(), h = s.particleHeight();
     requireTargetSize(w, h, s);
     const bool blendVolume = s.blend == BlendMode::Volume;
-    if (blendVolume)
+    if (blendVolume) {
       volume.prepare(w, h, s.fragmentsPerPixel, s.volumePoolBytes, s.volumeShortList);
-    else
+      particles.clearHiddenFragments(w, h);
+    } else {
       volume.bindUnused();
+    }
 
     // Float framebuffer: radiance + transmittance (a texture, for the resolve), and distance.
     if (!target || target->width() != w || target->height() != h) {
@@ -202,6 +205,8 @@ struct Renderer::Impl {
     const float clearDistance[4] = {kNoDistance, 0.0f, 0.0f, 0.0f};
     gl.ClearBufferfv(GL_COLOR, 0, clearColour);
     gl.ClearBufferfv(GL_COLOR, 1, clearDistance);
+    const float clearDepth = 1.0f;
+    gl.ClearBufferfv(GL_DEPTH, 0, &clearDepth);
 
     const Stopwatch drawClock;
     const bool counted =
@@ -266,14 +271,22 @@ struct Renderer::Impl {
     return image;
   }
 
-  Image render(const std::vector<scene::Particle>& list, const RenderSettings& s, RenderStats* stats) {
-    validate(s);
+  Image render(const std::vector<scene::Particle>& list, const RenderSettings& settings, RenderStats* stats) {
+    validate(settings);
+    // hidden-fragment culling where the particles' screen rectangles add up to more than the
+    // screen: below one fragment a pixel on average it finds little to cull (HiddenFragments.h)
+    const int w = settings.particleWidth(), h = settings.particleHeight();
+    const std::size_t bound = scene::pixelFootprintBound(list, scene::CameraFrame(settings.view.camera, w, h));
+    RenderSettings s = settings;
+    s.hiddenCulling = settings.hiddenCulling && hiddenCullingPays(bound, static_cast<std::size_t>(w) * h);
     const glm::vec3 eye = s.view.camera.eye;
     const Stopwatch clock;
+    // back to front for alpha blending, and for volume blending's hidden-fragment culling, which
+    // draws them reversed (ParticlePass::draw); volume blending without it takes them as given
     std::vector<std::size_t> order;
-    if (s.blend == BlendMode::Alpha) {
+    if (s.blend == BlendMode::Alpha || ParticlePass::cullsHidden(s, list.size())) {
       order = backToFrontOrder(list, eye);
-    } else {  // order-independent: as given
+    } else {
       order.resize(list.size());
       std::iota(order.begin(), order.end(), std::size_t{0});
     }
@@ -285,8 +298,6 @@ struct Renderer::Impl {
     const Built built = illuminate(list.size(), needsSunVolume(lit) ? sunGridFor(list, lit) : SunVolumeGrid{},
                                    needsZenithVolume(lit) ? zenithGridFor(list, lit) : SunVolumeGrid{}, lit, stats,
                                    diffusionGridFor(list, lit));
-    const int w = s.particleWidth(), h = s.particleHeight();
-    const std::size_t bound = scene::pixelFootprintBound(list, scene::CameraFrame(s.view.camera, w, h));
     if (stats) stats->fragmentBound = bound;
     return draw(list.size(), false, farPlane, lit, built, false, stats, bound);
   }
@@ -295,8 +306,9 @@ struct Renderer::Impl {
                          RenderStats* stats) {
     validate(s);
     const Stopwatch clock;
-    const bool alpha = s.blend == BlendMode::Alpha;
-    const CloudscapeGeneration::Result g = generation.run(cloud, q, s, alpha, particles.tables().referenceRadius());
+    // sorted for alpha blending, and for volume blending's hidden-fragment culling (drawn reversed)
+    const bool sortKeys = s.blend == BlendMode::Alpha || s.hiddenCulling;
+    const CloudscapeGeneration::Result g = generation.run(cloud, q, s, sortKeys, particles.tables().referenceRadius());
     gl.Finish();
     if (stats) {
       stats->generateSeconds = clock.seconds();

@@ -2,7 +2,8 @@
 // Preceded by cloudlut_geometry.glsl, cloudlut_phase.glsl, cloudlut_sampling.glsl,
 // cloudlut_shading.glsl (verbatim, from lut_formats/glsl), particle_common.glsl, particle_varyings.glsl,
 // particle_chord.glsl, volume_fragments.glsl, sun_volume.glsl, sun_volume_chord.glsl, sun_chord_map.glsl,
-// sun_volume_sampling.glsl, zenith_volume_sampling.glsl and diffusion_sampling.glsl.
+// sun_volume_sampling.glsl, zenith_volume_sampling.glsl, diffusion_sampling.glsl,
+// cloudlut_detail_noise.glsl, particle_detail.glsl and hidden_fragments.glsl.
 // Two lighting models (render/RenderTypes.h, docs/LIGHTING.md): the seed's (kLighting 0) and the
 // cloud model (kLighting 1), whose equations are cloudlut_shading.glsl's.
 //
@@ -80,6 +81,11 @@ float angularClosure(float rho, float mu) {
 }
 
 layout(r32ui, binding = 0) uniform coherent uimage2D uHeads;  // volume_fragments.glsl lists
+const int kHidden = PARTICLE_HIDDEN;  // 1: hidden fragments are culled (render/HiddenFragments.h)
+#if PARTICLE_HIDDEN
+// before the shader: the depth buffer holds the hidden distances of the batches drawn before
+layout(early_fragment_tests) in;
+#endif
 
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out float oDistance;
@@ -96,8 +102,11 @@ void main() {
   float tEnter, tExit;
   bool inside;
   if (!particleViewChord(uEye, dir, p.centerDensity.xyz, toParticle, o, d, tEnter, tExit, inside)) discard;
-  // The part the eye sees, [tNear, tExit], and its share of the chord's length (1 outside).
+  // hidden behind the segments already stored for the pixel (render/HiddenFragments.h)
   float tNear = max(tEnter, 0.0);
+  float hiddenFrom = kHidden != 0 ? hiddenBeyond(ivec2(gl_FragCoord.xy)) : uintBitsToFloat(0x7f800000u);
+  if (tNear >= hiddenFrom) discard;
+  // The part the eye sees, [tNear, tExit], and its share of the chord's length (1 outside).
   float front = inside ? clamp((tExit - tNear) / max(tExit - tEnter, 1e-30), 0.0, 1.0) : 1.0;
 
   vec3 S = normalize(o + tEnter * d);
@@ -236,6 +245,8 @@ void main() {
     if (node < fragCapacity) {
       uint next = imageAtomicExchange(uHeads, ivec2(gl_FragCoord.xy), node);
       storeFragment(node, tNear, tExit, tau, radiance, next);
+      // counted while the pixel hides nothing yet: a larger D would hide less
+      if (kHidden != 0 && isinf(hiddenFrom)) addFrontSegment(ivec2(gl_FragCoord.xy), tExit, tau);
       if (next == FRAGMENT_LIST_END && regionCount[0] < pixelCapacity)  // the pixel's first: list it
         pixels[atomicAdd(regionCount[0], 1u)] = packPixel(ivec2(gl_FragCoord.xy));
       oColor = vec4(0.0, 0.0, 0.0, 1.0);  // stored: composited by the resolves (render/VolumeResolve.h)

@@ -1,6 +1,6 @@
 // particle.vert.glsl — rasterises a proxy of each particle's ellipsoid (seed §5.4): one instance
-// per particle, in the back-to-front order of the particle buffer or of the sorted keys, 36
-// vertices each. The fragment shader intersects the view ray with the ellipsoid itself, so a
+// per particle, in the back-to-front order of the particle buffer or of the sorted keys (front
+// to back, reversed, under hidden-fragment culling), 36 vertices each. The fragment shader intersects the view ray with the ellipsoid itself, so a
 // proxy only has to cover its outline, once per pixel; the smaller it is, the fewer fragments
 // llvmpipe rasterises and discards.
 //   Seen from afar (the eye at least kPolygonClearance bounding radii from the centre, beyond the
@@ -20,6 +20,9 @@ uniform vec3 uEye;        // world
 uniform float uNearPlane; // world distance of the near clipping plane
 uniform int uOutlinePolygons;  // 1: the polygon where it applies, 0: always the box
 uniform int uUseOrder;  // 1: draw in the order of the sorted keys (GPU bitonic sort), 0: buffer order
+uniform int uFirstInstance;    // instance 0 draws this one (a batch of the pass)
+uniform int uInstanceCount;    // > 0: the pass draws this many, last first (front to back)
+uniform float uHiddenDepthScale;  // > 0: the proxy's depth (below), 1 / far plane (world units⁻¹)
 
 layout(std430, binding = 1) readonly buffer SortKeys {
   uvec2 sortKeys[];  // (distance bits, particle index), back to front
@@ -58,7 +61,9 @@ vec3 silhouettePolygonCorner(vec3 e, int k) {
 }
 
 void main() {
-  int index = uUseOrder != 0 ? int(sortKeys[gl_InstanceID].y) : gl_InstanceID;
+  int instance = gl_InstanceID + uFirstInstance;
+  if (uInstanceCount > 0) instance = uInstanceCount - 1 - instance;
+  int index = uUseOrder != 0 ? int(sortKeys[instance].y) : instance;
   GpuParticle p = particles[index];
   mat3 toWorld = mat3(p.toWorld[0].xyz, p.toWorld[1].xyz, p.toWorld[2].xyz);
   vec3 fromCentre = uEye - p.centerDensity.xyz;
@@ -78,4 +83,11 @@ void main() {
   vCenterDensity = p.centerDensity;
   vToParticle = p.toParticle;
   gl_Position = uViewProjection * vec4(vWorld, 1.0);
+  // Hidden-fragment culling (render/HiddenFragments.h): the whole proxy at the depth of the
+  // particle's nearest point, |c − eye| − bounding radius, times uHiddenDepthScale, so that the
+  // early depth test drops it where the depth buffer holds a nearer hidden distance.
+  if (uHiddenDepthScale > 0.0) {
+    float depth = clamp(max(length(fromCentre) - boundingRadius, 0.0) * uHiddenDepthScale, 0.0, 1.0);
+    gl_Position.z = (2.0 * depth - 1.0) * gl_Position.w;
+  }
 }
