@@ -66,7 +66,7 @@ void HiddenFragments::fillDepth(float depthScale) {
   gl_.DepthMask(GL_TRUE);
   gl_.DrawArrays(GL_TRIANGLES, 0, 3);
   gl_.DepthMask(GL_FALSE);
-  gl_.DepthFunc(GL_LESS);
+  gl_.DepthFunc(GL_LEQUAL);
   gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   gl_.Enable(GL_BLEND);
   gl_.Enable(GL_CULL_FACE);

@@ -57,7 +57,7 @@ class HiddenFragments {
   void bind() const;
   // Writes depth = D · depthScale (clamped to [0, 1]; 1 where τ_front < kHiddenOpticalDepth) into
   // the bound target's depth buffer under the current scissor, colour untouched; restores the
-  // particle pass's raster state (depth test LESS without writes, blending, culling) and leaves
+  // particle pass's raster state (depth test LEQUAL without writes, blending, culling) and leaves
   // no program in use.
   void fillDepth(float depthScale);
 

@@ -147,13 +147,14 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
     if (count > 0) gl_.DrawArraysInstanced(GL_TRIANGLES, 0, kProxyVertices, static_cast<GLsizei>(count));
   } else {
     // front to back in kHiddenBatches batches, the hidden distances into the depth buffer between
-    // two (HiddenFragments.h)
+    // two (HiddenFragments.h); LEQUAL: a proxy at exactly the hidden depth, or at the cleared 1,
+    // is drawn
     const float depthScale = 1.0f / farPlane;
     hidden_.bind();
     uniforms.set("uHiddenDepthScale", depthScale);
     uniforms.set("uInstanceCount", static_cast<int>(count));
     gl_.Enable(GL_DEPTH_TEST);
-    gl_.DepthFunc(GL_LESS);
+    gl_.DepthFunc(GL_LEQUAL);
     gl_.DepthMask(GL_FALSE);
     const std::size_t batches = static_cast<std::size_t>(kHiddenBatches);
     for (std::size_t b = 0; b < batches; ++b) {
