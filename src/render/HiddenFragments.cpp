@@ -54,8 +54,8 @@ void HiddenFragments::bind() const {
 
 void HiddenFragments::fillDepth(float depthScale) {
   if (!depthProgram_.id())
-    depthProgram_ = linkDrawProgram(gl_, {"hidden_depth.vert.glsl"}, {"hidden_fragments.glsl", "hidden_depth.frag.glsl"},
-                                    defines(), "hidden depth");
+    depthProgram_ = linkDrawProgram(gl_, {"hidden_depth.vert.glsl"},
+                                    {"hidden_fragments.glsl", "hidden_depth.frag.glsl"}, defines(), "hidden depth");
   gl_.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   gl_.UseProgram(depthProgram_.id());
   ProgramUniforms(gl_, depthProgram_.id()).set("uDepthScale", depthScale);

@@ -3,8 +3,8 @@
 // pass draws front to back and keeps, per pixel, the optical depth τ_front of the segments it has
 // stored so far (a sum) and the farthest exit D among them (a maximum). Every stored segment ends
 // before D and extinctions add where segments overlap, so the transmittance from the eye to D is
-// at most e^{−τ_front}. Once τ_front ≥ kHiddenOpticalDepth, a later fragment that enters at or
-// beyond D adds at most kHiddenTransmittance of its radiance to the pixel, and is not shaded.
+// at most e^{−τ_front}. Once τ_front ≥ −ln kHiddenTransmittance, a later fragment that enters at
+// or beyond D adds at most kHiddenTransmittance of its radiance to the pixel: it is not shaded.
 //
 // On llvmpipe a fragment discarded inside the shader costs what a shaded one does (its lanes run
 // masked), so the pass also rejects hidden fragments before the shader: it draws the particles in
@@ -29,14 +29,15 @@ inline constexpr float kHiddenTransmittance = 1e-3f;
 // Batches of the particle pass between which the depth buffer learns the hidden distances.
 inline constexpr int kHiddenBatches = 4;
 // Fewer particles than this are drawn without culling: their lists are short, and the batches'
-// depth passes and the atomics cost more than they save (one particle: 45 → 69 ms a frame).
+// depth passes and the atomics cost more than they save (`one-rho4`: 43–50 → 66–78 ms a
+// frame).
 inline constexpr std::size_t kHiddenMinParticles = 16;
 
 // Whether culling pays for an explicit scene whose particles' screen rectangles hold at most
 // `fragmentBound` fragments (scene::pixelFootprintBound) on a target of `pixels`: only above one
-// fragment a pixel on average. Below it the lists are short and culling finds little: the bench's
-// 40-particle `cloudscape` stores 212 731 of 219 353 fragments with it. (A generated cloudscape,
-// whose bound is unknown, always culls.)
+// fragment a pixel on average. Below it the lists are short and culling finds little: the
+// bench's 40-particle `cloudscape` stores 212 731 of 219 353 fragments with it. (A generated
+// cloudscape, whose bound is unknown, always culls.)
 inline bool hiddenCullingPays(std::size_t fragmentBound, std::size_t pixels) { return fragmentBound > pixels; }
 
 class HiddenFragments {
@@ -55,10 +56,10 @@ class HiddenFragments {
   void clear(int width, int height);
   // Binds the state to image units 2 (D) and 3 (τ_front) for the particle program.
   void bind() const;
-  // Writes depth = D · depthScale (clamped to [0, 1]; 1 where τ_front < kHiddenOpticalDepth) into
-  // the bound target's depth buffer under the current scissor, colour untouched; restores the
-  // particle pass's raster state (depth test LEQUAL without writes, blending, culling) and leaves
-  // no program in use.
+  // Writes depth = D · depthScale (clamped to [0, 1]; 1 where τ_front < −ln
+  // kHiddenTransmittance) into the bound target's depth buffer under the current scissor, colour
+  // untouched; restores the particle pass's raster state (depth test LEQUAL without writes,
+  // blending, culling) and leaves no program in use.
   void fillDepth(float depthScale);
 
  private:

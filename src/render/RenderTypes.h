@@ -88,7 +88,8 @@ struct RenderSettings {
   // (VolumeResolve.h; the image is the same up to rounding whatever it is, only the time changes)
   int volumeShortList = kShortListCapacity;
   // volume: fragments behind segments that let through less than 10⁻³ are not shaded
-  // (HiddenFragments.h; at least 16 particles); the image changes by at most that share of their
+  // (HiddenFragments.h; at least 16 particles, and for a particle list only when their screen
+  // rectangles add up to more than the screen); the image changes by at most that share of their
   // radiance
   bool hiddenCulling = true;
   // Particles seen from afar are rasterised as a polygon around their outline, those close by as

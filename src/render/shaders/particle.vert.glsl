@@ -1,8 +1,8 @@
 // particle.vert.glsl — rasterises a proxy of each particle's ellipsoid (seed §5.4): one instance
 // per particle, in the back-to-front order of the particle buffer or of the sorted keys (front
-// to back, reversed, under hidden-fragment culling), 36 vertices each. The fragment shader intersects the view ray with the ellipsoid itself, so a
-// proxy only has to cover its outline, once per pixel; the smaller it is, the fewer fragments
-// llvmpipe rasterises and discards.
+// to back, reversed, under hidden-fragment culling), 36 vertices each. The fragment shader
+// intersects the view ray with the ellipsoid itself, so a proxy only has to cover its outline,
+// once per pixel; the smaller it is, the fewer fragments llvmpipe rasterises and discards.
 //   Seen from afar (the eye at least kPolygonClearance bounding radii from the centre, beyond the
 //   near plane): a polygon of kPolygonSides sides circumscribing the ellipsoid's silhouette,
 //   1.06 times the outline's area (the box's back faces cover about 1.6 times as much). In the
