@@ -54,7 +54,7 @@ void HiddenFragments::bind() const {
 
 void HiddenFragments::fillDepth(float depthScale) {
   if (!depthProgram_.id())
-    depthProgram_ = linkDrawProgram(gl_, {"hidden_depth.vert.glsl"},
+    depthProgram_ = linkDrawProgram(gl_, {"viewport_triangle.vert.glsl"},
                                     {"hidden_fragments.glsl", "hidden_depth.frag.glsl"}, defines(), "hidden depth");
   gl_.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   gl_.UseProgram(depthProgram_.id());
@@ -65,12 +65,6 @@ void HiddenFragments::fillDepth(float depthScale) {
   gl_.DepthFunc(GL_ALWAYS);
   gl_.DepthMask(GL_TRUE);
   gl_.DrawArrays(GL_TRIANGLES, 0, 3);
-  gl_.DepthMask(GL_FALSE);
-  gl_.DepthFunc(GL_LEQUAL);
-  gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  gl_.Enable(GL_BLEND);
-  gl_.Enable(GL_CULL_FACE);
-  gl_.UseProgram(0);
 }
 
 }  // namespace cloudlut::render

@@ -58,8 +58,8 @@ class HiddenFragments {
   void bind() const;
   // Writes depth = D · depthScale (clamped to [0, 1]; 1 where τ_front < −ln
   // kHiddenTransmittance) into the bound target's depth buffer under the current scissor, colour
-  // untouched; restores the particle pass's raster state (depth test LEQUAL without writes,
-  // blending, culling) and leaves no program in use.
+  // untouched. It leaves its own program and raster state (colour writes off, depth test ALWAYS
+  // with writes, no blending, no face culling): the caller re-applies its own.
   void fillDepth(float depthScale);
 
  private:

@@ -51,6 +51,8 @@ std::string configurationDefines(const RenderSettings& s, bool volume, bool sunB
 // for a, the distance attachment 1 with MIN.
 void setProxyState(const GlFunctions& gl, GLenum dstColour, GLenum srcAlpha, GLenum dstAlpha) {
   gl.Disable(GL_DEPTH_TEST);
+  gl.DepthMask(GL_TRUE);  // so that the next frame's depth clear writes
+  gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   gl.Enable(GL_CULL_FACE);
   gl.FrontFace(GL_CCW);
   gl.CullFace(GL_FRONT);
@@ -153,16 +155,17 @@ void ParticlePass::draw(std::size_t count, bool useOrder, bool volume, float far
     hidden_.bind();
     uniforms.set("uHiddenDepthScale", depthScale);
     uniforms.set("uInstanceCount", static_cast<int>(count));
-    gl_.Enable(GL_DEPTH_TEST);
-    gl_.DepthFunc(GL_LEQUAL);
-    gl_.DepthMask(GL_FALSE);
     const std::size_t batches = static_cast<std::size_t>(kHiddenBatches);
     for (std::size_t b = 0; b < batches; ++b) {
       const std::size_t first = count * b / batches, end = count * (b + 1) / batches;
       if (b > 0) {
-        hidden_.fillDepth(depthScale);
+        hidden_.fillDepth(depthScale);  // leaves its own program and state: re-apply the pass's
+        setProxyState(gl_, GL_SRC_ALPHA, GL_ZERO, GL_SRC_ALPHA);
         gl_.UseProgram(program.id());
       }
+      gl_.Enable(GL_DEPTH_TEST);
+      gl_.DepthFunc(GL_LEQUAL);
+      gl_.DepthMask(GL_FALSE);
       uniforms.set("uFirstInstance", static_cast<int>(first));
       if (end > first) gl_.DrawArraysInstanced(GL_TRIANGLES, 0, kProxyVertices, static_cast<GLsizei>(end - first));
     }

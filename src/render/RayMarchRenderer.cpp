@@ -37,7 +37,7 @@ struct RayMarchRenderer::Impl {
       : context(c),
         gl(makeCurrentAndLoadGlFunctions(c)),
         budget(gl, c),
-        program(linkDrawProgram(gl, {"raymarch.vert.glsl"},
+        program(linkDrawProgram(gl, {"viewport_triangle.vert.glsl"},
                                 {"cloudlut_phase.glsl", "particle_common.glsl", "raymarch_cells.glsl", "loop_budget.glsl",
                                  "raymarch.frag.glsl"},
                                 "#define PARTICLES_ACCESS readonly\n" + particleRecordDefines() + glslDefine("MAX_CELLS_PER_AXIS", kMaxCellsPerAxis) +

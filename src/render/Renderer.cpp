@@ -188,9 +188,10 @@ struct Renderer::Impl {
     const int w = s.particleWidth(), h = s.particleHeight();
     requireTargetSize(w, h, s);
     const bool blendVolume = s.blend == BlendMode::Volume;
+    const bool cullsHidden = ParticlePass::cullsHidden(s, count);  // the only user of the depth buffer
     if (blendVolume) {
       volume.prepare(w, h, s.fragmentsPerPixel, s.volumePoolBytes, s.volumeShortList);
-      particles.clearHiddenFragments(w, h);
+      if (cullsHidden) particles.clearHiddenFragments(w, h);
     } else {
       volume.bindUnused();
     }
@@ -205,8 +206,10 @@ struct Renderer::Impl {
     const float clearDistance[4] = {kNoDistance, 0.0f, 0.0f, 0.0f};
     gl.ClearBufferfv(GL_COLOR, 0, clearColour);
     gl.ClearBufferfv(GL_COLOR, 1, clearDistance);
-    const float clearDepth = 1.0f;
-    gl.ClearBufferfv(GL_DEPTH, 0, &clearDepth);
+    if (cullsHidden) {
+      const float clearDepth = 1.0f;
+      gl.ClearBufferfv(GL_DEPTH, 0, &clearDepth);
+    }
 
     const Stopwatch drawClock;
     const bool counted =
