@@ -21,6 +21,7 @@
 #include "support/ImageDifference.h"
 #include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
+#include "support/SourceScenes.h"
 #include "support/TempDir.h"
 
 using namespace cloudlut;
@@ -32,7 +33,7 @@ TEST_CASE("camera inside a particle: the front of its chord against the path tra
   RenderFixture rig = RenderFixture::defaultMedium(0);  // its tables, converged
   render::Renderer& renderer = rig.renderer;
 
-  const scene::Scene s = scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/cluster.json");
+  const scene::Scene s = sourceScene("data/bench_scenes/cluster.json");
   // Particle 2 (centre (0.156, 0.058, 0.886), radius 0.873) holds the eye; no other one does.
   const std::size_t holder = 2;
   const glm::vec3 eye(0.156f, 0.10f, 1.20f);
@@ -89,7 +90,7 @@ TEST_CASE("camera inside a particle: the front of its chord against the path tra
 TEST_CASE("camera inside a particle: no step as the eye enters it", "[render][lighting][inside]") {
   constexpr int kWidth = 80, kHeight = 52;
   RenderFixture rig = RenderFixture::defaultMedium(0);
-  const scene::Scene s = scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/cluster.json");
+  const scene::Scene s = sourceScene("data/bench_scenes/cluster.json");
   const scene::Particle& holder = s.particles[2];  // a sphere: centre (0.156, 0.058, 0.886), radius 0.873
   REQUIRE(holder.radii.x == holder.radii.y);
   REQUIRE(holder.radii.x == holder.radii.z);

@@ -24,6 +24,7 @@
 #include "support/BakedFixtures.h"
 #include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
+#include "support/SourceScenes.h"
 #include "support/TempDir.h"
 
 using namespace cloudlut;
@@ -56,7 +57,7 @@ render::RenderSettings settingsFor(const scene::View& view, int width, int heigh
 
 // A bench scene (data/bench_scenes/<name>.json).
 scene::Scene benchScene(const std::string& name) {
-  return scene::readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/" + name + ".json");
+  return sourceScene("data/bench_scenes/" + name + ".json");
 }
 
 // The path tracer's image of the particles seen from `view`, `spp` paths per pixel.

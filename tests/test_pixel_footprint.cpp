@@ -15,6 +15,7 @@
 #include "scene/PixelFootprint.h"
 #include "scene/Scene.h"
 #include "support/RenderFixture.h"
+#include "support/SourceScenes.h"
 
 using namespace cloudlut;
 using namespace cloudlut::render;
@@ -106,13 +107,9 @@ TEST_CASE("pixel footprint: a sphere ahead is bounded within its square and two 
 
 TEST_CASE("pixel footprint: a first frame that fits one tile is not counted", "[render][volume]") {
   RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
-  const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
-  RenderSettings s;
-  s.width = 96;
-  s.height = 64;
-  s.view = resolveView(scene, {});
+  const Scene scene = sourceScene("data/scenes/small.json");
+  RenderSettings s = sceneSettings(scene, 96, 64, BlendMode::Volume);
   s.view.camera.eye = {0.0f, 1.0f, 5.0f};
-  s.blend = BlendMode::Volume;
   s.tilePlan = VolumeTilePlan::Expected;
   s.fragmentsPerPixel = 4;
   s.volumePoolBytes = 16.0L + 28.0L * 4 * 96 * 16;  // bands of 16 rows, 6144 nodes each

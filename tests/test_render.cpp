@@ -22,6 +22,7 @@
 #include "scene/Scene.h"
 #include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
+#include "support/SourceScenes.h"
 
 using namespace cloudlut;
 using namespace cloudlut::render;
@@ -44,13 +45,10 @@ double relativeDifference(double value, double reference) {
 TEST_CASE("render: the small scene has the particles' silhouette, no NaN, and is not empty", "[render]") {
   RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
   Renderer& renderer = rig.renderer;
-  const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
+  const Scene scene = sourceScene("data/scenes/small.json");
   REQUIRE(scene.particles.size() >= 5);
 
-  RenderSettings settings;
-  settings.width = 128;
-  settings.height = 96;
-  settings.view = resolveView(scene, {});
+  RenderSettings settings = sceneSettings(scene, 128, 96);
   const Image image = renderer.render(scene.particles, settings);
   REQUIRE(image.width == 128);
   REQUIRE(image.height == 96);
@@ -312,11 +310,8 @@ Image bilateralUpscaleReference(const Image& low, int width, int height) {
 TEST_CASE("render: the GPU bilateral upscale equals the filter computed on the CPU", "[render]") {
   RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
   Renderer& renderer = rig.renderer;
-  const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
-  RenderSettings low;
-  low.width = 48;
-  low.height = 36;
-  low.view = resolveView(scene, {});
+  const Scene scene = sourceScene("data/scenes/small.json");
+  RenderSettings low = sceneSettings(scene, 48, 36);
   // The particle buffer of a render at 1/downscale resolution is the render at the low size
   // (same camera and aspect): upscale that one on the CPU.
   const Image small = renderer.render(scene.particles, low);

@@ -21,6 +21,7 @@
 #include "support/CliRunner.h"
 #include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
+#include "support/SourceScenes.h"
 
 using namespace cloudlut;
 using namespace cloudlut::render;
@@ -329,12 +330,8 @@ TEST_CASE("volume order: with the eye inside a particle, culling hidden fragment
   // at the eye's plane, not the near plane. The 36-particle cluster seen from inside two of its
   // particles: the culled image stays within kHiddenTransmittance of every fragment shaded.
   RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
-  const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/bench_scenes/cluster36.json");
-  RenderSettings s;
-  s.width = 80;
-  s.height = 45;
-  s.view = resolveView(scene, {});
-  s.blend = BlendMode::Volume;
+  const Scene scene = sourceScene("data/bench_scenes/cluster36.json");
+  RenderSettings s = sceneSettings(scene, 80, 45, BlendMode::Volume);
   for (const glm::vec3 eye : {glm::vec3(1.49f, 0.085f, 0.6f), glm::vec3(1.49f, 0.3f, 0.405f)}) {
     INFO("eye " << eye.x << ", " << eye.y << ", " << eye.z);
     s.view.camera.eye = eye;  // inside particle 5: centre (1.49, 0.085, 0.405), radius 0.542

@@ -16,6 +16,7 @@
 #include "support/CliRunner.h"
 #include "support/RenderFixture.h"
 #include "support/RenderLuts.h"
+#include "support/SourceScenes.h"
 
 using namespace cloudlut;
 using namespace cloudlut::render;
@@ -107,13 +108,9 @@ TEST_CASE("volume tiles: bands planned from counted rows are valid and as few as
 TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overlap", "[render][volume]") {
   RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
   Renderer& renderer = rig.renderer;
-  const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
-  RenderSettings s;
-  s.width = 96;
-  s.height = 64;
-  s.view = resolveView(scene, {});
+  const Scene scene = sourceScene("data/scenes/small.json");
+  RenderSettings s = sceneSettings(scene, 96, 64, BlendMode::Volume);
   s.view.camera.eye = {0.0f, 1.0f, 5.0f};  // closer: the cluster fills most of the image
-  s.blend = BlendMode::Volume;
   RenderStats whole;
   const Image reference = renderer.render(scene.particles, s, &whole);
   REQUIRE(whole.volumeTiles == 1);
@@ -266,12 +263,8 @@ TEST_CASE("volume tiles: tiled and untiled renders agree, exact for n-way overla
 TEST_CASE("volume tiles: a 1920x1080 volume render fits the GL's storage block limit", "[render][volume]") {
   RenderFixture rig = RenderFixture::synthetic(DensityModel::Noise);
   Renderer& renderer = rig.renderer;
-  const Scene scene = readScene(std::string(CLOUDLUT_SOURCE_DIR) + "/data/scenes/small.json");
-  RenderSettings s;
-  s.width = 1920;
-  s.height = 1080;
-  s.view = resolveView(scene, {});
-  s.blend = BlendMode::Volume;
+  const Scene scene = sourceScene("data/scenes/small.json");
+  RenderSettings s = sceneSettings(scene, 1920, 1080, BlendMode::Volume);
   s.downscale = 2;  // the seed's Table 1: particles at half resolution
   s.tilePlan = VolumeTilePlan::Expected;  // the tiles of the expected load, which the limit sizes
   RenderStats stats;
