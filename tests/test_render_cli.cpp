@@ -453,3 +453,29 @@ TEST_CASE("render CLI: --sky-model picks the sky that lights the clouds; the atm
   CHECK(fs::exists(tmp / "m.exr"));
   CHECK(fs::exists(tmp / "t.exr"));
 }
+
+TEST_CASE("render CLI: still frames keep the light-space volumes, --relight builds them each frame, the same images",
+          "[render][cli][kept]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts");
+  const std::string still = "--blend volume --frames 3 --speed 0 --yaw 0";
+  const CliResult kept = runCli(renderArgs(tmp / "luts", kScene, tmp / "kept.exr", still));
+  const CliResult relit = runCli(renderArgs(tmp / "luts", kScene, tmp / "relit.exr", still + " --relight"));
+  REQUIRE(kept.exitCode == 0);
+  REQUIRE(relit.exitCode == 0);
+  const auto mentions = [](const std::string& text) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find("light-space volumes kept"); at != std::string::npos;
+         at = text.find("light-space volumes kept", at + 1))
+      ++n;
+    return n;
+  };
+  CHECK(mentions(kept.out) == 2);  // every frame but the first
+  CHECK(mentions(relit.out) == 0);
+  for (const char* frame : {"_0000.exr", "_0001.exr", "_0002.exr"}) {
+    INFO(frame);
+    const std::string a = readFile(tmp / (std::string("kept") + frame)), b = readFile(tmp / (std::string("relit") + frame));
+    REQUIRE(!a.empty());
+    CHECK(a == b);
+  }
+}

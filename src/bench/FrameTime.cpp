@@ -67,36 +67,41 @@ std::vector<BenchRow> frameTimeRows(const std::string& sceneName, const scene::S
   marchRow.note = "steady-state frame (upload, march), best of 3 after one";
   rows.push_back(marchRow);
 
+  // The cold frames build the light-space volumes every frame; the kept ones reuse the first
+  // frame's (RenderSettings::keepLighting: still clouds, still sun).
   render::Image full;
-  for (const int downscale : {1, 2, 4}) {
-    render::RenderSettings rs;
-    rs.width = width;
-    rs.height = height;
-    rs.view = view;
-    rs.blend = render::BlendMode::Volume;
-    rs.downscale = downscale;
-    render::Image img;
-    const double seconds = steadyFrameSeconds(
-        [&](render::Image& out) {
-          render::RenderStats s;
-          out = lut.render(scene.particles, rs, &s);
-          return s.uploadSeconds + s.occlusionSeconds + s.renderSeconds + s.upscaleSeconds;
-        },
-        img);
-    if (downscale == 1) full = img;
-    BenchRow row = base;
-    row.method = "frame-lut-volume";
-    row.steps = downscale;
-    row.seconds = seconds;
-    if (downscale > 1) row.errorMean = relativeRmse(img, full);
-    char note[200];
-    std::snprintf(note, sizeof note,
-                  "steady-state frame (upload, light-space passes, shading, blending, upscale), particles at 1/%d "
-                  "resolution; %.2fx the ray marcher's %d-step frame",
-                  downscale, marchSeconds / std::max(seconds, 1e-9), kRayMarchSteps);
-    row.note = note;
-    rows.push_back(row);
-  }
+  for (const bool keep : {false, true})
+    for (const int downscale : {1, 2, 4}) {
+      render::RenderSettings rs;
+      rs.width = width;
+      rs.height = height;
+      rs.view = view;
+      rs.blend = render::BlendMode::Volume;
+      rs.downscale = downscale;
+      rs.keepLighting = keep;
+      render::Image img;
+      const double seconds = steadyFrameSeconds(
+          [&](render::Image& out) {
+            render::RenderStats s;
+            out = lut.render(scene.particles, rs, &s);
+            return s.uploadSeconds + s.occlusionSeconds + s.renderSeconds + s.upscaleSeconds;
+          },
+          img);
+      if (downscale == 1 && !keep) full = img;
+      BenchRow row = base;
+      row.method = keep ? "frame-lut-volume-kept" : "frame-lut-volume";
+      row.steps = downscale;
+      row.seconds = seconds;
+      if (downscale > 1 || keep) row.errorMean = relativeRmse(img, full);
+      char note[240];
+      std::snprintf(note, sizeof note,
+                    "steady-state frame (upload, %s, shading, blending, upscale), particles at 1/%d "
+                    "resolution; %.2fx the ray marcher's %d-step frame",
+                    keep ? "light-space volumes kept from the frame before" : "light-space passes", downscale,
+                    marchSeconds / std::max(seconds, 1e-9), kRayMarchSteps);
+      row.note = note;
+      rows.push_back(row);
+    }
   return rows;
 }
 

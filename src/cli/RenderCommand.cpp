@@ -76,6 +76,7 @@ int runRender(int argc, char** argv) {
     ("diffusion-sweeps", "--diffusion: sweeps of the solve on each of its levels (but the finest, with cycles)", cxxopts::value<int>()->default_value("15"))
     ("diffusion-cycles", "--diffusion: correction cycles over the coarser levels in place of the finest level's sweeps (0: its sweeps)", cxxopts::value<int>()->default_value("3"))
     ("diffusion-spacing", "--diffusion: node spacing, in units of the median particle radius (grown to hold the particles in 128 nodes per side; twice it in a box ahead of the camera)", cxxopts::value<double>()->default_value("0.5"))
+    ("relight", "build the light-space volumes (sun, zenith, diffusion) every frame, also when the particles, sun and grids are the frame before's and its volumes would do (the same image, slower: for timing)")
     ("computed-chords", "the particle shader computes each particle's own chords in the sun volume again instead of reading the splat's (the same image, slower: for timing)")
     ("lighting", "lighting model: cloud (sunlight per shading point, multiple scattering of the cloud around each point, "
      "ambient from the sky above and the ground below through the cloud above and below each point) or seed (the "
@@ -141,6 +142,7 @@ int runRender(int argc, char** argv) {
   settings.outlinePolygons = args.count("box-proxies") == 0;
   settings.hiddenCulling = args.count("shade-hidden") == 0;
   settings.sunChordMap = args.count("computed-chords") == 0;
+  settings.keepLighting = args.count("relight") == 0;
   const double diffusion = args["diffusion"].as<double>(), spacing = args["diffusion-spacing"].as<double>();
   if (!(diffusion >= 0.0 && diffusion <= 1.0)) throw UsageError("--diffusion: expected a share from 0 to 1");
   if (!(spacing >= 0.01 && spacing <= 10.0)) throw UsageError("--diffusion-spacing: expected 0.01 to 10 particle radii");
@@ -232,6 +234,8 @@ int runRender(int argc, char** argv) {
                   file.c_str(), image.width, image.height, stats.particles, render::toString(settings.blend),
                   1e3 * stats.generateSeconds, 1e3 * stats.occlusionSeconds, 1e3 * stats.renderSeconds,
                   1e3 * setupSeconds, context->description().c_str());
+      if (stats.lightSpaceKept)
+        std::printf("  light-space volumes kept from the frame before (the same particles, sun and grids)\n");
       if (stats.litParticles > 0)
         std::printf("  light-space passes over %zu particles within the far distance (in view or not)\n",
                     stats.litParticles);

@@ -100,6 +100,11 @@ struct RenderSettings {
   // particle shader reads them to take each particle's own ramp out; false: the shader computes
   // them again (the same image, slower: for timing).
   bool sunChordMap = true;
+  // A frame of explicit particles reuses the light-space volumes (sun, zenith, diffusion) of the
+  // frame before when they would be built from the same inputs (render/LightSpaceInputs.h: the
+  // particles, the sun, the grids, the solve): the same image, without the light-space passes'
+  // time. false: built every frame (the cold frames of the ground-truth suite's timings).
+  bool keepLighting = true;
   // Cloud lighting: the share of the multiple light taken from the diffusion volume
   // (render/DiffusionVolume.h, docs/LIGHTING.md; 0: the tables' alone, the pass is skipped;
   // diffusionShareOfMultiple), the sweeps of its solve on each level, the correction cycles that
@@ -157,6 +162,7 @@ struct RenderStats {
   double uploadSeconds = 0;     // particle buffer upload (explicit particles)
   double generateSeconds = 0;   // GPU generation + sort (cloudscapes)
   double occlusionSeconds = 0;  // light-space tiling, occlusion, smoothing; the sun volume
+  bool lightSpaceKept = false;  // the light-space volumes were the frame before's (keepLighting)
   double renderSeconds = 0;     // shading + blending: draw (+ volume resolve), glFinish
   double resolveSeconds = 0;    // of which the volume resolves
   double upscaleSeconds = 0;    // bilateral upscale (GPU), glFinish

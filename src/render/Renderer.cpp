@@ -17,6 +17,7 @@
 #include "render/GpuStorage.h"
 #include "render/HiddenFragments.h"
 #include "render/LightOcclusion.h"
+#include "render/LightSpaceInputs.h"
 #include "render/ParticlePass.h"
 #include "render/ParticleUpload.h"
 #include "render/SkyPass.h"
@@ -67,6 +68,12 @@ struct Renderer::Impl {
   // overflows is planned before anything is drawn, and a load that fits stops counting after one.
   // A frame whose particles' screen rectangles fit one tile's pool is not counted at all.
   bool countFirst = true;
+  // The inputs of the light-space volumes as they stand (LightSpaceInputs.h), when a frame of
+  // explicit particles built them; null when they match nothing a frame could reuse (a
+  // cloudscape's, or a single volume's build for the tests). And the footprints their sun
+  // volume's build skipped.
+  std::unique_ptr<LightSpaceInputs> lightSpace;
+  std::size_t lightSpaceSkipped = 0;
 
   Impl(GlContext& c, const io::LutSet& luts)
       : context(c),
@@ -136,31 +143,56 @@ struct Renderer::Impl {
   // The sunlight of the frame: the seed's per-particle occlusion when the settings take the
   // sunlight per particle, the sun optical-depth volume over `grid` when the lighting or the
   // sunlight needs it; and the zenith volume over `zenithGrid` when the ambient needs it
-  // (needsZenithVolume). Returns which volumes were built.
+  // (needsZenithVolume); the diffusion volume over diffusionGrid. With `keepable` (a frame of
+  // explicit particles, their records in upload.records()) and s.keepLighting, the volumes of the
+  // last build stand when they were built from the same inputs (LightSpaceInputs.h). Returns which
+  // volumes the frame has.
   Built illuminate(std::size_t count, const SunVolumeGrid& grid, const SunVolumeGrid& zenithGrid, const RenderSettings& s,
-                   RenderStats* stats, const DiffusionGrid& diffusionGrid = noDiffusionGrid()) {
+                   RenderStats* stats, const DiffusionGrid& diffusionGrid = noDiffusionGrid(), bool keepable = false) {
     const Stopwatch clock;
-    std::size_t dropped = 0, skipped = 0;
+    std::size_t dropped = 0;
     if (s.sunlight == SunlightModel::Particle)
       dropped = occlusion.run(count, s, particles.tables().unitOpticalRadius(), stats != nullptr);
-    const bool sun = needsSunVolume(s) && count > 0;
-    if (sun)
-      skipped = sunVolume.build(grid, count, particles.tables().splatTable(), stats != nullptr, s.sunChordMap);
-    const bool zenith = needsZenithVolume(s) && count > 0;
-    if (zenith)
-      zenithVolume.build(zenithGrid, count, particles.tables().splatTable(), false);
-    diffusion.clear();
-    if (sun && diffusionGrid.grid.cascades == 1 && s.diffusionShare > 0.0f && (s.terms & kTermMultiple) != 0) {
-      diffusionColumns.build(diffusionGrid.grid, count, particles.tables().splatTable(), false);
-      diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionSweeps,
-                      s.diffusionCycles,
-                      diffusionGrid.besideOffset, diffusionGrid.fadeNodes);
+    LightSpaceInputs inputs;
+    inputs.sun = needsSunVolume(s) && count > 0;
+    inputs.zenith = needsZenithVolume(s) && count > 0;
+    inputs.diffusion = inputs.sun && diffusionGrid.grid.cascades == 1 && s.diffusionShare > 0.0f &&
+                       (s.terms & kTermMultiple) != 0;
+    if (inputs.sun) inputs.sunGrid = grid;
+    if (inputs.zenith) inputs.zenithGrid = zenithGrid;
+    if (inputs.diffusion) {
+      inputs.diffusionGrid = diffusionGrid.grid;
+      inputs.diffusionSweeps = s.diffusionSweeps;
+      inputs.diffusionCycles = s.diffusionCycles;
+      inputs.diffusionBeside = diffusionGrid.besideOffset;
+      inputs.diffusionFade = diffusionGrid.fadeNodes;
+    }
+    inputs.sunChordMap = s.sunChordMap;
+    inputs.countsOverflow = stats != nullptr;
+    if (keepable) inputs.records = upload.records();
+    const bool sun = inputs.sun, zenith = inputs.zenith;  // a frame that reuses had the same to build
+    const bool kept = keepable && s.keepLighting && lightSpace && reusable(*lightSpace, inputs);
+    if (!kept) {
+      lightSpace.reset();  // the volumes below are rebuilt: until they are, they match nothing
+      lightSpaceSkipped = 0;
+      if (inputs.sun)
+        lightSpaceSkipped =
+            sunVolume.build(grid, count, particles.tables().splatTable(), inputs.countsOverflow, s.sunChordMap);
+      if (inputs.zenith) zenithVolume.build(zenithGrid, count, particles.tables().splatTable(), false);
+      diffusion.clear();
+      if (inputs.diffusion) {
+        diffusionColumns.build(diffusionGrid.grid, count, particles.tables().splatTable(), false);
+        diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionSweeps,
+                        s.diffusionCycles, diffusionGrid.besideOffset, diffusionGrid.fadeNodes);
+      }
+      if (keepable) lightSpace = std::make_unique<LightSpaceInputs>(std::move(inputs));
     }
     gl.Finish();
     if (stats) {
       stats->occlusionSeconds = clock.seconds();
+      stats->lightSpaceKept = kept;
       if (s.occlusion && count > 0) stats->tileOverflow = dropped;
-      stats->sunFootprintOverflow = skipped;
+      stats->sunFootprintOverflow = lightSpaceSkipped;
       stats->sunChordsNeeded = sun ? sunVolume.chordsNeeded() : 0;
       stats->sunChordMap = sun && sunVolume.chordMapComplete();
     }
@@ -284,25 +316,20 @@ struct Renderer::Impl {
     s.hiddenCulling = settings.hiddenCulling && hiddenCullingPays(bound, static_cast<std::size_t>(w) * h);
     const glm::vec3 eye = s.view.camera.eye;
     const Stopwatch clock;
-    // back to front for alpha blending, and for volume blending's hidden-fragment culling, which
-    // draws them reversed (ParticlePass::draw); volume blending without it takes them as given
-    std::vector<std::size_t> order;
-    if (s.blend == BlendMode::Alpha || ParticlePass::cullsHidden(s, list.size())) {
-      order = backToFrontOrder(list, eye);
-    } else {
-      order.resize(list.size());
-      std::iota(order.begin(), order.end(), std::size_t{0});
-    }
-    const float farPlane = upload.upload(list, order, eye, glm::normalize(s.view.lighting.sunDirection));
+    // drawn back to front for alpha blending, and for volume blending's hidden-fragment culling,
+    // which draws them reversed (ParticlePass::draw); volume blending without it takes them as given
+    const float farPlane = upload.upload(list, eye, glm::normalize(s.view.lighting.sunDirection));
+    const bool sorted = s.blend == BlendMode::Alpha || ParticlePass::cullsHidden(s, list.size());
+    if (sorted) upload.uploadDrawOrder(backToFrontOrder(list, eye));
     if (stats) stats->uploadSeconds = clock.seconds();
     float altitude = 0.0f;  // of the particles' mean centre, for the atmosphere's cloud lighting
     for (const scene::Particle& p : list) altitude += p.center.y / static_cast<float>(list.size());
     const RenderSettings lit = litByAtmosphere(s, altitude);
     const Built built = illuminate(list.size(), needsSunVolume(lit) ? sunGridFor(list, lit) : SunVolumeGrid{},
                                    needsZenithVolume(lit) ? zenithGridFor(list, lit) : SunVolumeGrid{}, lit, stats,
-                                   diffusionGridFor(list, lit));
+                                   diffusionGridFor(list, lit), true);
     if (stats) stats->fragmentBound = bound;
-    return draw(list.size(), false, farPlane, lit, built, false, stats, bound);
+    return draw(list.size(), sorted, farPlane, lit, built, false, stats, bound);
   }
 
   Image renderCloudscape(const scene::CloudType& cloud, const scene::QualityPreset& q, const RenderSettings& s,
@@ -472,11 +499,9 @@ struct Renderer::Impl {
     return generation.readBack(generation.run(cloud, q, s, false, particles.tables().referenceRadius()), cloud, q, s);
   }
 
-  // Uploads `list` in its own order, for the light-space passes alone (no draw follows).
+  // Uploads `list`, for the light-space passes alone (no draw follows).
   void uploadAsGiven(const std::vector<scene::Particle>& list, const RenderSettings& s) {
-    std::vector<std::size_t> order(list.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    upload.upload(list, order, s.view.camera.eye, glm::normalize(s.view.lighting.sunDirection));
+    upload.upload(list, s.view.camera.eye, glm::normalize(s.view.lighting.sunDirection));
   }
 
   Renderer::SunVolumeSnapshot sunVolumeOf(const std::vector<scene::Particle>& list, const RenderSettings& s,
@@ -484,6 +509,7 @@ struct Renderer::Impl {
     validate(s);
     uploadAsGiven(list, s);
     const SunVolumeGrid grid = given ? *given : sunGridFor(list, s);
+    lightSpace.reset();  // the frame's volumes are overwritten
     if (list.empty()) return {grid, {}, 0};
     const std::size_t skipped =
         sunVolume.build(grid, list.size(), particles.tables().splatTable(), true);

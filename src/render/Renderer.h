@@ -58,6 +58,9 @@ class Renderer {
   void setAtmosphereTables(const glsl::AtmosphereParameters& atmosphere, const Table4D& transmittance,
                            const Table4D& multipleScattering, const Table4D& irradiance);
 
+  // One frame of explicit particles. With settings.keepLighting it reuses the light-space volumes
+  // of the frame before when they would be built from the same inputs (LightSpaceInputs.h;
+  // stats->lightSpaceKept says so): the same image.
   Image render(const std::vector<scene::Particle>& particles, const RenderSettings& settings,
                RenderStats* stats = nullptr);
 
