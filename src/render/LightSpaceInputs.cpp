@@ -3,7 +3,10 @@
 #include <cstring>
 
 namespace cloudlut::render {
+namespace {
 
+// Exact equality of two grids: cascades, dims, every cascade's matrices, slice axis, sun, local
+// cloud window.
 bool sameGrid(const SunVolumeGrid& a, const SunVolumeGrid& b) {
   if (a.cascades != b.cascades || a.dims != b.dims || a.sliceAxis != b.sliceAxis || a.sun != b.sun ||
       a.localCloud != b.localCloud)
@@ -12,6 +15,8 @@ bool sameGrid(const SunVolumeGrid& a, const SunVolumeGrid& b) {
     if (a.toGrid[c] != b.toGrid[c] || a.toWorld[c] != b.toWorld[c]) return false;
   return true;
 }
+
+}  // namespace
 
 bool reusable(const LightSpaceInputs& built, const LightSpaceInputs& frame) {
   // GpuParticleRecord is seven vec4 of floats, no padding: the bytes are the values

@@ -30,8 +30,4 @@ struct LightSpaceInputs {
 // the skipped footprints if the frame wants them counted.
 bool reusable(const LightSpaceInputs& built, const LightSpaceInputs& frame);
 
-// Exact equality of two grids: cascades, dims, every cascade's matrices, slice axis, sun, local
-// cloud window.
-bool sameGrid(const SunVolumeGrid& a, const SunVolumeGrid& b);
-
 }  // namespace cloudlut::render

@@ -17,17 +17,16 @@ float ParticleUpload::upload(const std::vector<scene::Particle>& particles, cons
   if (particles.size() > maxParticles)
     throw UsageError(std::to_string(particles.size()) + " particles exceed this OpenGL's shader storage limit of " +
                      std::to_string(maxParticles) + " particles per render");
-  std::vector<GpuParticleRecord>& records = records_;
-  records.assign(particles.size(), GpuParticleRecord{});
+  records_.assign(particles.size(), GpuParticleRecord{});
   float farthest = 0.0f;
   for (std::size_t k = 0; k < particles.size(); ++k) {
     const scene::Particle& p = particles[k];
-    records[k] = packParticle(p, sunDirection);
+    records_[k] = packParticle(p, sunDirection);
     const float reach = std::sqrt(3.0f) * std::max({p.radii.x, p.radii.y, p.radii.z});
     farthest = std::max(farthest, glm::length(p.center - eye) + reach);
   }
-  buffers_.records.assign(records.empty() ? nullptr : records.data(),
-                          std::max<std::size_t>(records.size(), 1) * sizeof(GpuParticleRecord));
+  buffers_.records.assign(records_.empty() ? nullptr : records_.data(),
+                          std::max<std::size_t>(records_.size(), 1) * sizeof(GpuParticleRecord));
   return std::max(farthest * 1.01f, 1e-3f);
 }
 
