@@ -18,6 +18,7 @@
 #include "cli/AtmosphereSetup.h"
 #include "cli/Command.h"
 #include "cli/Options.h"
+#include "cli/RenderReport.h"
 #include "cli/SceneOptions.h"
 #include "core/Errors.h"
 #include "io/LutIo.h"
@@ -33,8 +34,6 @@ namespace cloudlut::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-
 
 // OUT with "_NNNN" before the extension (frame sequences).
 fs::path framePath(const fs::path& out, int frame) {
@@ -228,42 +227,7 @@ int runRender(int argc, char** argv) {
       render::writeFilmicPng(image, file, args.count("exposure") ? std::optional<float>(static_cast<float>(exposure)) : std::nullopt);
     else if (ext == ".png") render::writePng(image, file, settings.view.lighting.skyColor, static_cast<float>(exposure));
     else render::writeExr(image, file);
-    if (!args.count("quiet")) {
-      std::printf("wrote %s: %dx%d, %zu particles, %s blending, generate %.1f ms, occlusion %.1f ms, render %.1f ms "
-                  "(setup %.1f ms, %s)\n",
-                  file.c_str(), image.width, image.height, stats.particles, render::toString(settings.blend),
-                  1e3 * stats.generateSeconds, 1e3 * stats.occlusionSeconds, 1e3 * stats.renderSeconds,
-                  1e3 * setupSeconds, context->description().c_str());
-      if (stats.lightSpaceKept)
-        std::printf("  light-space volumes kept from the frame before (the same particles, sun and grids)\n");
-      if (stats.litParticles > 0)
-        std::printf("  light-space passes over %zu particles within the far distance (in view or not)\n",
-                    stats.litParticles);
-      if (settings.downscale > 1)
-        std::printf("  particles at 1/%d resolution, upscale %.1f ms\n", settings.downscale, 1e3 * stats.upscaleSeconds);
-      if (settings.blend == render::BlendMode::Volume)
-        std::printf("  volume blending: %zu tile(s) (%s; %zu split for the fragment load), pool %.1f MiB, %zu fragments, "
-                    "%zu overflowed (alpha-blended), %zu pixels over %d segments, %zu over %d (chunked), %zu over %d "
-                    "(resolved in more than one chunk), resolve %.1f ms\n",
-                    stats.volumeTiles, stats.volumeTilesCounted ? "planned from the counted fragments" : "planned from the expected load",
-                    stats.volumeRedrawnTiles, static_cast<double>(stats.volumePoolBytes) / 1048576.0,
-                    stats.fragments, stats.fragmentOverflow, stats.midListPixels,
-                    std::min(render::kSortedResolveSlots[1], settings.volumeShortList), stats.longListPixels, settings.volumeShortList, stats.truncatedPixels, render::kMaxSegmentsPerPixel,
-                    1e3 * stats.resolveSeconds);
-      if (stats.resolveCutPixels > 0)
-        std::fprintf(stderr,
-                     "cloudlut render: warning: %zu pixels hold more fragments than this GL's loop budget lets the "
-                     "volume resolve composite (llvmpipe: 65535 loop passes per shader invocation); their farther "
-                     "segments are missing\n",
-                     stats.resolveCutPixels);
-      if (stats.sunFootprintOverflow > 0)
-        std::printf("  sun volume: %zu particle-cascade pair(s) over the footprint limit, left to a coarser cascade\n",
-                    stats.sunFootprintOverflow);
-      if (settings.sunChordMap && stats.sunChordsNeeded > 0 && !stats.sunChordMap)
-        std::printf("  sun volume: the chord map (%.1f MiB) is over the GPU buffer budget; the particle shader "
-                    "computes the chords again\n",
-                    static_cast<double>(stats.sunChordsNeeded) * 16.0 / 1048576.0);
-    }
+    if (!args.count("quiet")) printFrameReport(file, image, stats, settings, setupSeconds, context->description());
   }
   return kExitOk;
 }
