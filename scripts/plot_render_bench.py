@@ -4,8 +4,9 @@ path-traced reference versus render time, one panel per scene, one series per me
 marching at its step counts, fixed and adaptive; the LUT particle renderer), the reference's
 noise floor as a dashed line. With FRAMES.png, also the steady-state frame times at 1280×720
 (bench/FrameTime.h rows): the ray marcher at 32 steps and the LUT renderer at full, 1/2 and 1/4
-particle resolution, its light-space volumes built every frame (cold) and, hatched, kept from the
-frame before, per scene. Usage: plot_render_bench.py BENCH.csv OUT.png [FRAMES.png]"""
+particle resolution, its light-space volumes built every frame (cold), kept from the frame before
+(hatched) and under a sun turning 1° a frame (dotted: the sun volume built again, the diffusion
+solve warm-started), per scene. Usage: plot_render_bench.py BENCH.csv OUT.png [FRAMES.png]"""
 import csv
 import sys
 from collections import defaultdict
@@ -33,7 +34,10 @@ def plot_frames(rows, out):
              ("frame-lut-volume", "2", "LUT, particles at 1/2"), ("frame-lut-volume", "4", "LUT, particles at 1/4"),
              ("frame-lut-volume-kept", "1", "LUT, full, lighting kept"),
              ("frame-lut-volume-kept", "2", "LUT, 1/2, lighting kept"),
-             ("frame-lut-volume-kept", "4", "LUT, 1/4, lighting kept")]
+             ("frame-lut-volume-kept", "4", "LUT, 1/4, lighting kept"),
+             ("frame-lut-volume-sun", "1", "LUT, full, sun turning"),
+             ("frame-lut-volume-sun", "2", "LUT, 1/2, sun turning"),
+             ("frame-lut-volume-sun", "4", "LUT, 1/4, sun turning")]
     kinds = [k for k in kinds if any(r["method"] == k[0] and r["steps"] == k[1] for r in rows)]
     fig, ax = plt.subplots(figsize=(max(6.0, 1.3 * len(scenes)), 4.2))
     width = 0.8 / len(kinds)
@@ -44,9 +48,9 @@ def plot_frames(rows, out):
             if match:
                 xs.append(i + (k - 0.5 * (len(kinds) - 1)) * width)
                 ys.append(1e3 * number(match[0]["seconds"]))
-        kept = method.endswith("-kept")
-        ax.bar(xs, ys, width, label=label, hatch="//" if kept else None,
-               color="C%d" % (int(steps).bit_length() if kept else k), alpha=0.55 if kept else 1.0)
+        kept, sun = method.endswith("-kept"), method.endswith("-sun")
+        ax.bar(xs, ys, width, label=label, hatch="//" if kept else ".." if sun else None,
+               color="C%d" % (int(steps).bit_length() if kept or sun else k), alpha=0.55 if kept else 0.35 if sun else 1.0)
     ax.set_xticks(range(len(scenes)))
     ax.set_xticklabels(scenes, rotation=30, ha="right", fontsize=8)
     ax.set_yscale("log")
@@ -54,7 +58,7 @@ def plot_frames(rows, out):
     resolution = rows[0]["resolution"] if rows else ""
     ax.set_title("frame time at %s: LUT renderer against the ray marcher" % resolution)
     ax.grid(True, axis="y", which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))  # beside the bars, not over them
     fig.tight_layout()
     fig.savefig(out, dpi=110)
 
@@ -67,7 +71,8 @@ def main() -> int:
     if len(sys.argv) == 4:
         # the timed frames (frame-lut-volume-accuracy rows carry no time: their error is against the
         # reference at its own size)
-        plot_frames([r for r in rows if r["method"] in ("frame-raymarch", "frame-lut-volume", "frame-lut-volume-kept")],
+        plot_frames([r for r in rows if r["method"] in ("frame-raymarch", "frame-lut-volume", "frame-lut-volume-kept",
+                                                        "frame-lut-volume-sun")],
                     sys.argv[3])
     # the frame rows' error is the upscale's, against the full-resolution frame, not the reference's
     measured = [r for r in rows if r["table"] and number(r["seconds"]) > 0 and number(r["error_mean"]) >= 0

@@ -454,6 +454,36 @@ TEST_CASE("render CLI: --sky-model picks the sky that lights the clouds; the atm
   CHECK(fs::exists(tmp / "t.exr"));
 }
 
+TEST_CASE("render CLI: a path whose sun moves relights only the sun; --diffusion-warm-cycles out of range is bad usage",
+          "[render][cli][kept]") {
+  TempDir tmp;
+  writeSyntheticLutSet(tmp / "luts");
+  const fs::path path = tmp / "sun.json";
+  const std::string frame = R"({"seconds": 0, "eye": [0, 1.2, 9], "target": [0, 0.6, 0], "up": [0, 1, 0], "fov_deg": 40, "sun": )";
+  std::ofstream(path) << R"({"format": "cloudlut camera path", "version": 1, "frames": [)" << frame << "[0.5, 0.8, 0.35]}, "
+                      << frame << "[0.45, 0.8, 0.42]}]}";
+  const auto mentions = [](const std::string& text) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find("only the sun moved"); at != std::string::npos; at = text.find("only the sun moved", at + 1))
+      ++n;
+    return n;
+  };
+  const CliResult moved = runCli(renderArgs(tmp / "luts", kScene, tmp / "m.exr", "--blend volume --path " + q(path)));
+  REQUIRE(moved.exitCode == 0);
+  CHECK(mentions(moved.out) == 1);  // the second frame
+  CHECK(moved.out.find("the diffusion solve started from the frame before's") != std::string::npos);
+  const CliResult relit = runCli(renderArgs(tmp / "luts", kScene, tmp / "r.exr", "--blend volume --relight --path " + q(path)));
+  REQUIRE(relit.exitCode == 0);
+  CHECK(mentions(relit.out) == 0);
+  for (const char* bad : {"-1", "1001"}) {
+    const CliResult r = runCli(renderArgs(tmp / "luts", kScene, tmp / "b.exr", std::string("--diffusion-warm-cycles ") + bad));
+    INFO(bad << ": " << r.err);
+    CHECK(r.exitCode == 2);
+    CHECK(lineCount(r.err) == 1);
+    CHECK(r.err.find("diffusion-warm-cycles") != std::string::npos);
+  }
+}
+
 TEST_CASE("render CLI: still frames keep the light-space volumes, --relight builds them each frame, the same images",
           "[render][cli][kept]") {
   TempDir tmp;

@@ -7,16 +7,18 @@
 // the particle upload, the light-space passes, shading and blending, the upscale; not the
 // read-back.
 //
-// Every LUT frame twice: cold, the light-space volumes (sun, diffusion) built every frame as
-// when the sun or the clouds move; and kept, reused from the frame before
-// (RenderSettings::keepLighting: still clouds under a still sun, the same image).
+// Every LUT frame three times: cold, the light-space volumes (sun, diffusion) built every frame as
+// when the clouds move; kept, reused from the frame before (RenderSettings::keepLighting: still
+// clouds under a still sun, the same image); and under a sun turning 1° a frame about the
+// vertical, the lighting kept (the sun volume built again, the diffusion solve warm-started).
 //
-// Rows (suite "ground-truth", resolution the frame's): method "frame-lut-volume" (cold) and
-// "frame-lut-volume-kept" with steps = the downscale factor, "frame-raymarch" with steps = 32.
-// For the reduced resolutions and the kept frames error_mean is the relative RMSE of the frame
-// against the cold full-resolution frame (RGB over the pixels where either is cloud: what the
-// upscale costs; 0 for the kept full-resolution frame), and the note gives the speed-up over the
-// ray marcher's frame.
+// Rows (suite "ground-truth", resolution the frame's): method "frame-lut-volume" (cold),
+// "frame-lut-volume-kept" and "frame-lut-volume-sun" with steps = the downscale factor,
+// "frame-raymarch" with steps = 32. For the reduced resolutions and the kept frames error_mean is
+// the relative RMSE of the frame against the cold full-resolution frame (RGB over the pixels where
+// either is cloud: what the upscale costs; 0 for the kept full-resolution frame); for the turning
+// sun's, against a cold full-resolution frame under the same sun (what the upscale and the warm
+// start cost). The note gives the speed-up over the ray marcher's frame.
 #include <string>
 #include <vector>
 

@@ -74,6 +74,7 @@ int runRender(int argc, char** argv) {
     ("diffusion", "cloud lighting: the share, 0 to 1, of the multiple light taken from a flux-limited diffusion solve over the particles, or over a box ahead of the camera in a wider scene or a cloudscape (docs/LIGHTING.md; 0: the tables' alone)", cxxopts::value<double>()->default_value("1"))
     ("diffusion-sweeps", "--diffusion: sweeps of the solve on each of its levels (but the finest, with cycles)", cxxopts::value<int>()->default_value("15"))
     ("diffusion-cycles", "--diffusion: correction cycles over the coarser levels in place of the finest level's sweeps (0: its sweeps)", cxxopts::value<int>()->default_value("3"))
+    ("diffusion-warm-cycles", "--diffusion: when only the sun moved since the last frame, correction cycles from the last solve in place of a whole solve (0: a whole solve)", cxxopts::value<int>()->default_value("1"))
     ("diffusion-spacing", "--diffusion: node spacing, in units of the median particle radius (grown to hold the particles in 128 nodes per side; twice it in a box ahead of the camera)", cxxopts::value<double>()->default_value("0.5"))
     ("relight", "build the light-space volumes (sun, zenith, diffusion) every frame, also when the particles, sun and grids are the frame before's and its volumes would do (the same image, slower: for timing)")
     ("computed-chords", "the particle shader computes each particle's own chords in the sun volume again instead of reading the splat's (the same image, slower: for timing)")
@@ -151,6 +152,9 @@ int runRender(int argc, char** argv) {
   settings.diffusionCycles = args["diffusion-cycles"].as<int>();
   if (settings.diffusionCycles < 0 || settings.diffusionCycles > 1000)
     throw UsageError("--diffusion-cycles: expected 0 to 1000");
+  settings.diffusionWarmCycles = args["diffusion-warm-cycles"].as<int>();
+  if (settings.diffusionWarmCycles < 0 || settings.diffusionWarmCycles > 1000)
+    throw UsageError("--diffusion-warm-cycles: expected 0 to 1000");
   if (settings.diffusionSweeps < 1 || settings.diffusionSweeps > 100000)
     throw UsageError("--diffusion-sweeps: expected 1 to 100000");
   settings.lighting = render::parseLighting(args["lighting"].as<std::string>());

@@ -15,6 +15,9 @@ void printFrameReport(const std::filesystem::path& file, const render::Image& im
               1e3 * setupSeconds, contextDescription.c_str());
   if (stats.lightSpaceKept)
     std::printf("  light-space volumes kept from the frame before (the same particles, sun and grids)\n");
+  else if (stats.lightSpaceSunOnly)
+    std::printf("  only the sun moved: its volume rebuilt, the zenith and diffusion column volumes kept%s\n",
+                stats.diffusionWarm ? ", the diffusion solve started from the frame before's" : "");
   if (stats.litParticles > 0)
     std::printf("  light-space passes over %zu particles within the far distance (in view or not)\n",
                 stats.litParticles);

@@ -66,13 +66,17 @@ void DiffusionVolume::release() {
   deleteTexture(gl_, flux_);
   deleteTexture(gl_, beside_.texture);
   levelCount_ = 0;
+  solved_ = false;
 }
 
 void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry,
-                            int sweeps, int cycles, float besideOffset, float fadeNodes) {
+                            int sweeps, int cycles, float besideOffset, float fadeNodes, int warmCycles) {
   fadeNodes_ = fadeNodes;
   const SunVolumeGrid& grid = columns.grid();
   const glm::ivec3 n = grid.dims;
+  // a warm start needs the last solve's field over these nodes and a coarser level for its cycles
+  const bool warm = warmCycles > 0 && solved_ && n == nodes_ && levelCount_ > 1;
+  solved_ = false;
   if (n != nodes_) {
     release();
     // levels while the coarser one keeps at least 6 nodes per side
@@ -118,7 +122,9 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
     gl_.DispatchCompute(groupsFor(d.x, kGroup), groupsFor(d.y, kGroup), groupsFor(d.z, kGroup));
     gl_.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   };
-  dispatch(use(0, 0));  // the finest level's medium and source
+  use(0, 0);  // the finest level's medium and source; its field started, or kept when warm
+  gl_.Uniform1i(stages_[0].uniform("uKeepField"), warm ? 1 : 0);
+  dispatch(levels_[0].nodes);
   for (int l = 1; l < levelCount_; ++l) {  // the coarser ones, each from the one finer
     const glm::ivec3 d = use(3, l);
     const glm::ivec3 fine = levels_[l - 1].nodes;
@@ -175,13 +181,17 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
     prolong(8, l);
     relax(l, kCycleSweeps, kCycleOverRelaxation, correction);
   };
-  for (int l = levelCount_ - 1; l >= 0; --l) {
-    if (l < levelCount_ - 1) prolong(4, l);  // start from the coarser level's solution
-    if (l > 0 || cycles == 0 || levelCount_ == 1) {
-      relax(l, sweeps, kOverRelaxation, false);
-      continue;
+  if (warm) {  // the last solve's field, corrected toward the new source
+    for (int c = 0; c < warmCycles; ++c) cycle(0);
+  } else {
+    for (int l = levelCount_ - 1; l >= 0; --l) {
+      if (l < levelCount_ - 1) prolong(4, l);  // start from the coarser level's solution
+      if (l > 0 || cycles == 0 || levelCount_ == 1) {
+        relax(l, sweeps, kOverRelaxation, false);
+        continue;
+      }
+      for (int c = 0; c < cycles; ++c) cycle(0);
     }
-    for (int c = 0; c < cycles; ++c) cycle(0);
   }
   const glm::ivec3 d = use(2, 0);
   gl_.BindImageTexture(3, flux_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
@@ -201,6 +211,8 @@ void DiffusionVolume::build(const SunVolume& columns, const SunVolume& sun, int 
   for (GLuint unit = 0; unit < 5; ++unit) gl_.BindImageTexture(unit, 0, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
   checkGlError(gl_, "solving the diffusion volume");
   built_ = true;
+  solved_ = true;
+  warmStarted_ = warm;
 }
 
 void DiffusionVolume::bind(const ProgramUniforms& uniforms, int unit) const {

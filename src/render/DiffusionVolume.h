@@ -39,8 +39,12 @@ class DiffusionVolume {
   // Then, on the next coarser level's nodes (the finest's when it is the only one), the weight
   // of the cloud beside each across the sun, besideOffset (world units) away (cloudBesideWeight):
   // it varies over particle radii, and the finest level's nodes would cost 8 times as much.
+  // A warm start (warmCycles > 0; the caller's promise: the same columns as the last build, only
+  // the sun moved): the last solve's φ and D start the finest level, and warmCycles correction
+  // cycles replace the coarse-to-fine solve and its cycles (docs/LIGHTING.md "A moving sun").
+  // Solved cold when there is no last solve over the same nodes, or only one level.
   void build(const SunVolume& columns, const SunVolume& sun, int sunUnit, float laterAsymmetry, int sweeps,
-             int cycles, float besideOffset, float fadeNodes = 0.0f);
+             int cycles, float besideOffset, float fadeNodes = 0.0f, int warmCycles = 0);
   static constexpr int kLevels = 3;
   // Binds the field to `unit`, the weights of the cloud beside to `unit` + 1, and sets
   // diffusion_sampling.glsl's uniforms; without a build
@@ -48,6 +52,8 @@ class DiffusionVolume {
   void bind(const ProgramUniforms& uniforms, int unit) const;
   void clear() { built_ = false; }
   bool built() const { return built_; }
+  // Whether the last build started from the solve before it (a warm start).
+  bool warmStarted() const { return warmStarted_; }
   // φ (per unit sun irradiance) and J (world axes) per node, 4 floats, x fastest (the tests,
   // through Renderer::diffusionVolume).
   std::vector<float> readBack() const;
@@ -84,6 +90,8 @@ class DiffusionVolume {
   glm::mat4 worldToNode_{1.0f};
   float fadeNodes_ = 0.0f;
   bool built_ = false;
+  bool solved_ = false;       // the levels hold a finished solve (clear() keeps it for a warm start)
+  bool warmStarted_ = false;
 };
 
 }  // namespace cloudlut::render

@@ -30,4 +30,16 @@ struct LightSpaceInputs {
 // the skipped footprints if the frame wants them counted.
 bool reusable(const LightSpaceInputs& built, const LightSpaceInputs& frame);
 
+// A frame that cannot reuse everything (not reusable) because the sun moved: the volumes that do
+// not depend on the sun and stand as built. The particles must be the built ones in everything but
+// the two words of a record that follow the sun (toParticle[0].w, the extinction scale toward it,
+// and toParticle[2].w, the sunlight; GpuParticleRecord.h), and the volume's grid and parameters
+// the built ones'.
+struct SunIndependentReuse {
+  bool zenith = false;            // the zenith volume: exact
+  bool diffusionColumns = false;  // the diffusion's column volume (exact), and its solve may start
+                                  // from the last one (DiffusionVolume::build, warm start)
+};
+SunIndependentReuse reusableUnderMovedSun(const LightSpaceInputs& built, const LightSpaceInputs& frame);
+
 }  // namespace cloudlut::render

@@ -114,6 +114,10 @@ struct RenderSettings {
   float diffusionShare = 1.0f;
   int diffusionSweeps = 15;
   int diffusionCycles = 3;
+  // With keepLighting, a frame whose sun alone moved starts the diffusion solve from the last one
+  // and runs this many correction cycles instead of the whole solve (0: the whole solve;
+  // DiffusionVolume::build, docs/LIGHTING.md "A moving sun").
+  int diffusionWarmCycles = 1;
   float diffusionSpacing = 0.5f;
   float diffusionGain = 1.2f;
   LightingModel lighting = LightingModel::Cloud;
@@ -163,6 +167,9 @@ struct RenderStats {
   double generateSeconds = 0;   // GPU generation + sort (cloudscapes)
   double occlusionSeconds = 0;  // light-space tiling, occlusion, smoothing; the sun volume
   bool lightSpaceKept = false;  // the light-space volumes were the frame before's (keepLighting)
+  bool lightSpaceSunOnly = false;  // only the sun moved: its volume rebuilt, the zenith and diffusion
+                                   // column volumes kept (keepLighting, reusableUnderMovedSun)
+  bool diffusionWarm = false;      // the diffusion solve started from the frame before's (diffusionWarmCycles)
   double renderSeconds = 0;     // shading + blending: draw (+ volume resolve), glFinish
   double resolveSeconds = 0;    // of which the volume resolves
   double upscaleSeconds = 0;    // bilateral upscale (GPU), glFinish

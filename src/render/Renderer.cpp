@@ -172,18 +172,23 @@ struct Renderer::Impl {
     if (keepable) inputs.records = upload.records();
     const bool sun = inputs.sun, zenith = inputs.zenith;  // a frame that reuses had the same to build
     const bool kept = keepable && s.keepLighting && lightSpace && reusable(*lightSpace, inputs);
+    SunIndependentReuse reuse;  // the same particles under a moved sun: what stands (LightSpaceInputs.h)
     if (!kept) {
+      if (keepable && s.keepLighting && lightSpace) reuse = reusableUnderMovedSun(*lightSpace, inputs);
       lightSpace.reset();  // the volumes below are rebuilt: until they are, they match nothing
       lightSpaceSkipped = 0;
       if (inputs.sun)
         lightSpaceSkipped =
             sunVolume.build(grid, count, particles.tables().splatTable(), inputs.countsOverflow, s.sunChordMap);
-      if (inputs.zenith) zenithVolume.build(zenithGrid, count, particles.tables().splatTable(), false);
+      if (inputs.zenith && !reuse.zenith)
+        zenithVolume.build(zenithGrid, count, particles.tables().splatTable(), false);
       diffusion.clear();
       if (inputs.diffusion) {
-        diffusionColumns.build(diffusionGrid.grid, count, particles.tables().splatTable(), false);
+        if (!reuse.diffusionColumns)
+          diffusionColumns.build(diffusionGrid.grid, count, particles.tables().splatTable(), false);
         diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionSweeps,
-                        s.diffusionCycles, diffusionGrid.besideOffset, diffusionGrid.fadeNodes);
+                        s.diffusionCycles, diffusionGrid.besideOffset, diffusionGrid.fadeNodes,
+                        reuse.diffusionColumns ? s.diffusionWarmCycles : 0);
       }
       if (keepable) lightSpace = std::make_unique<LightSpaceInputs>(std::move(inputs));
     }
@@ -191,6 +196,8 @@ struct Renderer::Impl {
     if (stats) {
       stats->occlusionSeconds = clock.seconds();
       stats->lightSpaceKept = kept;
+      stats->lightSpaceSunOnly = !kept && (reuse.zenith || reuse.diffusionColumns);
+      stats->diffusionWarm = !kept && inputs.diffusion && diffusion.warmStarted();
       if (s.occlusion && count > 0) stats->tileOverflow = dropped;
       stats->sunFootprintOverflow = lightSpaceSkipped;
       stats->sunChordsNeeded = sun ? sunVolume.chordsNeeded() : 0;

@@ -60,7 +60,9 @@ class Renderer {
 
   // One frame of explicit particles. With settings.keepLighting it reuses the light-space volumes
   // of the frame before when they would be built from the same inputs (LightSpaceInputs.h;
-  // stats->lightSpaceKept says so): the same image.
+  // stats->lightSpaceKept says so): the same image. When only the sun moved it builds the sun
+  // volume again, keeps the others and starts the diffusion solve from the last one
+  // (stats->lightSpaceSunOnly, stats->diffusionWarm; RenderSettings::diffusionWarmCycles).
   Image render(const std::vector<scene::Particle>& particles, const RenderSettings& settings,
                RenderStats* stats = nullptr);
 

@@ -79,7 +79,7 @@ std::vector<std::string> overlayLines(const ViewerState& s, const render::Render
   return {format("%.0f ms a frame (%.1f fps), %zu particles", 1e3 * frameSeconds, 1.0 / std::max(frameSeconds, 1e-6),
                  st.particles),
           format("generate %.0f, occlusion %.0f%s, particles %.0f ms", 1e3 * (st.generateSeconds + st.uploadSeconds),
-                 1e3 * st.occlusionSeconds, st.lightSpaceKept ? " (lighting kept)" : "", 1e3 * st.renderSeconds),
+                 1e3 * st.occlusionSeconds, st.lightSpaceKept ? " (lighting kept)" : st.lightSpaceSunOnly ? " (sun relit)" : "", 1e3 * st.renderSeconds),
           format("resolve %.0f, upscale %.0f, read-back %.1f, display %.1f ms", 1e3 * st.resolveSeconds,
                  1e3 * st.upscaleSeconds, 1e3 * st.readbackSeconds, 1e3 * displaySeconds),
           format("quality %s, %s blending, 1/%d resolution", scene::qualityPresetNames()[s.quality].c_str(),

@@ -6,7 +6,8 @@
 // All lengths in world units; φ is the fluence per unit sun irradiance (dimensionless: W/m² of
 // fluence per W/m² of irradiance), q its source per world unit.
 //   STAGE 0  per node: σ* (δ-Eddington scaled extinction) and q, the scaled beam's loss across
-//            the node's cell; the field starts at φ = 0 with D = 1/(3σ*(1 − g*) + 1/h).
+//            the node's cell; the field starts at φ = 0 with D = 1/(3σ*(1 − g*) + 1/h), or, in a
+//            warm start (uKeepField), keeps the last solve's φ and D over the same nodes.
 //   STAGE 1  half a sweep (the nodes of one colour, red-black; one lane per node of that colour) of
 //            successive over-relaxation of
 //            −∇·(D∇φ) = q (7-point, harmonic mean of D across each face, Marshak's vacuum
@@ -51,6 +52,7 @@ uniform int uColour;            // STAGE 1: the nodes (i + j + k) mod 2 = uColou
 uniform float uOverRelaxation;  // STAGE 1: successive over-relaxation factor ω in [1, 2)
 uniform int uSweeps;            // STAGE 5: the sweeps (each two half-sweeps)
 uniform int uKeepDiffusivity;   // STAGE 1 and 5: 1 keeps each node's D (a correction's sweeps)
+uniform int uKeepField;         // STAGE 0: 1 keeps the field as the last solve left it (a warm start)
 
 layout(rg32f, binding = 0) uniform image3D uMedium;  // σ*, q
 #if STAGE == 5
@@ -228,7 +230,7 @@ void main() {
   float far = (1.0 - f) * sunOpticalDepth(x - 0.5 * hMin * uSunColumns);
   float q = max(exp(-near) - exp(-far), 0.0) / hMin;
   imageStore(uMedium, n, vec4(sigmaStar, q, 0.0, 0.0));
-  startField(n, sigmaStar, gStar, hMin);
+  if (uKeepField == 0) startField(n, sigmaStar, gStar, hMin);
 #elif STAGE == 3
   vec2 medium = fullWeighting(n);
   imageStore(uMedium, n, vec4(medium, 0.0, 0.0));
