@@ -52,6 +52,21 @@ TEST_CASE("usage errors exit 2 with one line on stderr and write nothing", "[cli
   }
 }
 
+TEST_CASE("a value that is not a number names its option", "[cli]") {
+  TempDir tmp;
+  const std::string out = (tmp / "luts").string();
+  for (const std::string option : {"--steps", "--threads", "--extinction"})
+    for (const std::string form : {" ", "="}) {
+      const std::string c = "bake " + option + form + "many --out '" + out + "'";
+      INFO(c);
+      const CliResult r = runCli(c);
+      CHECK(r.exitCode == 2);
+      CHECK(lineCount(r.err) == 1);
+      CHECK(r.err.find(option + ": 'many'") != std::string::npos);
+      CHECK_FALSE(fs::exists(out));
+    }
+}
+
 TEST_CASE("an unwritable --out is a usage error", "[cli]") {
   TempDir tmp;
   std::ofstream(tmp / "file") << "x";

@@ -475,7 +475,7 @@ TEST_CASE("render CLI: a path whose sun moves relights only the sun; --diffusion
   const CliResult relit = runCli(renderArgs(tmp / "luts", kScene, tmp / "r.exr", "--blend volume --relight --path " + q(path)));
   REQUIRE(relit.exitCode == 0);
   CHECK(mentions(relit.out) == 0);
-  for (const char* bad : {"-1", "1001"}) {
+  for (const char* bad : {"-1", "1001", "x"}) {
     const CliResult r = runCli(renderArgs(tmp / "luts", kScene, tmp / "b.exr", std::string("--diffusion-warm-cycles ") + bad));
     INFO(bad << ": " << r.err);
     CHECK(r.exitCode == 2);

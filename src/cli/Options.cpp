@@ -13,10 +13,37 @@
 
 namespace cloudlut::cli {
 
+namespace {
+
+// cxxopts names the value it could not read, not its option. The shortest prefix of the arguments
+// that fails the same way ends with that value ("--name value") or with "--name=value": the
+// message names both. Falls back to cxxopts' own message.
+std::string badValueMessage(cxxopts::Options& options, int argc, char** argv, const std::string& what) {
+  for (int n = 2; n <= argc; ++n) {
+    try {
+      options.parse(n, argv);
+    } catch (const cxxopts::exceptions::incorrect_argument_type&) {
+      const std::string last = argv[n - 1];
+      const std::size_t eq = last.find('=');
+      if (last.rfind("--", 0) == 0 && eq != std::string::npos)
+        return last.substr(0, eq) + ": '" + last.substr(eq + 1) + "' is not a valid value";
+      if (n >= 3) return std::string(argv[n - 2]) + ": '" + last + "' is not a valid value";
+      break;
+    } catch (const cxxopts::exceptions::exception&) {
+      // a prefix that cuts an option from its value; the next one holds it
+    }
+  }
+  return what;
+}
+
+}  // namespace
+
 bool parseOptions(cxxopts::Options& options, int argc, char** argv, cxxopts::ParseResult& out) {
   options.add_options("help")("h,help", "print this help");
   try {
     out = options.parse(argc, argv);
+  } catch (const cxxopts::exceptions::incorrect_argument_type& e) {
+    throw UsageError(badValueMessage(options, argc, argv, e.what()));
   } catch (const cxxopts::exceptions::exception& e) {
     throw UsageError(e.what());
   }
