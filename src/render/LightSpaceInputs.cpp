@@ -44,6 +44,7 @@ SunIndependentReuse reusableUnderMovedSun(const LightSpaceInputs& built, const L
   if (!sameRecords(built.records, frame.records, true)) return reuse;
   reuse.zenith = built.zenith && frame.zenith && sameGrid(built.zenithGrid, frame.zenithGrid);
   reuse.diffusionColumns = built.diffusion && frame.diffusion && sameDiffusion(built, frame);
+  reuse.diffusionWarmStart = reuse.diffusionColumns && built.sun && frame.sun && built.sunGrid.sun != frame.sunGrid.sun;
   return reuse;
 }
 

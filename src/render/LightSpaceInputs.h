@@ -37,8 +37,11 @@ bool reusable(const LightSpaceInputs& built, const LightSpaceInputs& frame);
 // the built ones'.
 struct SunIndependentReuse {
   bool zenith = false;            // the zenith volume: exact
-  bool diffusionColumns = false;  // the diffusion's column volume (exact), and its solve may start
-                                  // from the last one (DiffusionVolume::build, warm start)
+  bool diffusionColumns = false;  // the diffusion's column volume: exact
+  // the diffusion's columns kept and the sun moved: the solve may start from the last one
+  // (DiffusionVolume::build, warm start); with the sun where it was (another change, e.g. the
+  // chord map), the solve is the whole one, and the frame the one built from nothing
+  bool diffusionWarmStart = false;
 };
 SunIndependentReuse reusableUnderMovedSun(const LightSpaceInputs& built, const LightSpaceInputs& frame);
 

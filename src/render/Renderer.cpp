@@ -188,7 +188,7 @@ struct Renderer::Impl {
           diffusionColumns.build(diffusionGrid.grid, count, particles.tables().splatTable(), false);
         diffusion.build(diffusionColumns, sunVolume, 1, particles.tables().laterPhaseAsymmetry(), s.diffusionSweeps,
                         s.diffusionCycles, diffusionGrid.besideOffset, diffusionGrid.fadeNodes,
-                        reuse.diffusionColumns ? s.diffusionWarmCycles : 0);
+                        reuse.diffusionWarmStart ? s.diffusionWarmCycles : 0);
       }
       if (keepable) lightSpace = std::make_unique<LightSpaceInputs>(std::move(inputs));
     }
