@@ -6,7 +6,7 @@ noise floor as a dashed line. With FRAMES.png, also the steady-state frame times
 (bench/FrameTime.h rows): the ray marcher at 32 steps and the LUT renderer at full, 1/2 and 1/4
 particle resolution, its light-space volumes built every frame (cold), kept from the frame before
 (hatched) and under a sun turning 1° a frame (dotted: the sun volume built again, the diffusion
-solve warm-started), per scene. Usage: plot_render_bench.py BENCH.csv OUT.png [FRAMES.png]"""
+solve warm-started), and with the seed's lighting model (cross-hatched), per scene. Usage: plot_render_bench.py BENCH.csv OUT.png [FRAMES.png]"""
 import csv
 import sys
 from collections import defaultdict
@@ -37,7 +37,10 @@ def plot_frames(rows, out):
              ("frame-lut-volume-kept", "4", "LUT, 1/4, lighting kept"),
              ("frame-lut-volume-sun", "1", "LUT, full, sun turning"),
              ("frame-lut-volume-sun", "2", "LUT, 1/2, sun turning"),
-             ("frame-lut-volume-sun", "4", "LUT, 1/4, sun turning")]
+             ("frame-lut-volume-sun", "4", "LUT, 1/4, sun turning"),
+             ("frame-lut-volume-seed", "1", "LUT, full, seed's model"),
+             ("frame-lut-volume-seed", "2", "LUT, 1/2, seed's model"),
+             ("frame-lut-volume-seed", "4", "LUT, 1/4, seed's model")]
     kinds = [k for k in kinds if any(r["method"] == k[0] and r["steps"] == k[1] for r in rows)]
     fig, ax = plt.subplots(figsize=(max(6.0, 1.3 * len(scenes)), 4.2))
     width = 0.8 / len(kinds)
@@ -48,9 +51,10 @@ def plot_frames(rows, out):
             if match:
                 xs.append(i + (k - 0.5 * (len(kinds) - 1)) * width)
                 ys.append(1e3 * number(match[0]["seconds"]))
-        kept, sun = method.endswith("-kept"), method.endswith("-sun")
-        ax.bar(xs, ys, width, label=label, hatch="//" if kept else ".." if sun else None,
-               color="C%d" % (int(steps).bit_length() if kept or sun else k), alpha=0.55 if kept else 0.35 if sun else 1.0)
+        kept, sun, seed = method.endswith("-kept"), method.endswith("-sun"), method.endswith("-seed")
+        ax.bar(xs, ys, width, label=label, hatch="//" if kept else ".." if sun else "xx" if seed else None,
+               color="C%d" % (int(steps).bit_length() if kept or sun or seed else k),
+               alpha=0.55 if kept else 0.35 if sun else 0.2 if seed else 1.0)
     ax.set_xticks(range(len(scenes)))
     ax.set_xticklabels(scenes, rotation=30, ha="right", fontsize=8)
     ax.set_yscale("log")
@@ -72,7 +76,7 @@ def main() -> int:
         # the timed frames (frame-lut-volume-accuracy rows carry no time: their error is against the
         # reference at its own size)
         plot_frames([r for r in rows if r["method"] in ("frame-raymarch", "frame-lut-volume", "frame-lut-volume-kept",
-                                                        "frame-lut-volume-sun")],
+                                                        "frame-lut-volume-sun", "frame-lut-volume-seed")],
                     sys.argv[3])
     # the frame rows' error is the upscale's, against the full-resolution frame, not the reference's
     measured = [r for r in rows if r["table"] and number(r["seconds"]) > 0 and number(r["error_mean"]) >= 0

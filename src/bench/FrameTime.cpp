@@ -158,6 +158,31 @@ std::vector<BenchRow> frameTimeRows(const std::string& sceneName, const scene::S
     row.note = note;
     rows.push_back(row);
   }
+
+  // The seed's model (seed §4.4, §5.3: sunlight per particle from the light-space tile occlusion,
+  // LM(ρ), the crease ambient), the same blending and resolutions: what the cloud model's terms
+  // cost on top of it. Its only light-space pass, the occlusion, runs every frame.
+  render::Image seedFull;
+  for (const int downscale : {1, 2, 4}) {
+    render::RenderSettings rs = lutFrameSettings(width, height, view, downscale);
+    rs.lighting = render::LightingModel::Seed;
+    rs.sunlight = render::defaultSunlight(rs.lighting);
+    render::Image img;
+    const double seconds = lutFrameSeconds(lut, scene.particles, rs, img, [](render::RenderSettings&) {});
+    if (downscale == 1) seedFull = img;
+    BenchRow row = base;
+    row.method = "frame-lut-volume-seed";
+    row.steps = downscale;
+    row.seconds = seconds;
+    if (downscale > 1) row.errorMean = relativeRmse(img, seedFull);
+    char note[240];
+    std::snprintf(note, sizeof note,
+                  "steady-state frame with the seed's lighting model (tile occlusion, LM(rho), crease ambient), "
+                  "particles at 1/%d resolution; %.2fx the ray marcher's %d-step frame",
+                  downscale, marchSeconds / std::max(seconds, 1e-9), kRayMarchSteps);
+    row.note = note;
+    rows.push_back(row);
+  }
   return rows;
 }
 

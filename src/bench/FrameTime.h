@@ -11,14 +11,17 @@
 // when the clouds move; kept, reused from the frame before (RenderSettings::keepLighting: still
 // clouds under a still sun, the same image); and under a sun turning 1° a frame about the
 // vertical, the lighting kept (the sun volume built again, the diffusion solve warm-started).
+// And with the seed's lighting model (sunlight per particle, LM(ρ), the crease ambient), whose
+// one light-space pass, the tile occlusion, runs every frame: what the cloud model costs over it.
 //
 // Rows (suite "ground-truth", resolution the frame's): method "frame-lut-volume" (cold),
-// "frame-lut-volume-kept" and "frame-lut-volume-sun" with steps = the downscale factor,
-// "frame-raymarch" with steps = 32. For the reduced resolutions and the kept frames error_mean is
-// the relative RMSE of the frame against the cold full-resolution frame (RGB over the pixels where
-// either is cloud: what the upscale costs; 0 for the kept full-resolution frame); for the turning
-// sun's, against a cold full-resolution frame under the same sun (what the upscale and the warm
-// start cost). The note gives the speed-up over the ray marcher's frame.
+// "frame-lut-volume-kept", "frame-lut-volume-sun" and "frame-lut-volume-seed" with steps = the
+// downscale factor, "frame-raymarch" with steps = 32. For the reduced resolutions and the kept
+// frames error_mean is the relative RMSE of the frame against the cold full-resolution frame (RGB
+// over the pixels where either is cloud: what the upscale costs; 0 for the kept full-resolution
+// frame); for the turning sun's, against a cold full-resolution frame under the same sun (what
+// the upscale and the warm start cost); for the seed model's reduced resolutions, against its own
+// full-resolution frame. The note gives the speed-up over the ray marcher's frame.
 #include <string>
 #include <vector>
 
