@@ -6,7 +6,8 @@ noise floor as a dashed line. With FRAMES.png, also the steady-state frame times
 (bench/FrameTime.h rows): the ray marcher at 32 steps and the LUT renderer at full, 1/2 and 1/4
 particle resolution, its light-space volumes built every frame (cold), kept from the frame before
 (hatched) and under a sun turning 1° a frame (dotted: the sun volume built again, the diffusion
-solve warm-started), and with the seed's lighting model (cross-hatched), per scene. Usage: plot_render_bench.py BENCH.csv OUT.png [FRAMES.png]"""
+solve warm-started), and with the seed's lighting model (cross-hatched), per scene.
+Usage: plot_render_bench.py BENCH.csv OUT.png [FRAMES.png]"""
 import csv
 import sys
 from collections import defaultdict
