@@ -70,6 +70,22 @@ double lutFrameSeconds(render::Renderer& lut, const std::vector<scene::Particle>
       image);
 }
 
+// A LUT frame's row: `base` with `method`, steps = the downscale factor and the time; the note
+// says what the frame does (`what`), its particle resolution and its speed-up over the ray
+// marcher's frame of marchSeconds.
+BenchRow lutFrameRow(const BenchRow& base, const char* method, int downscale, double seconds, double marchSeconds,
+                     const std::string& what) {
+  BenchRow row = base;
+  row.method = method;
+  row.steps = downscale;
+  row.seconds = seconds;
+  char tail[160];
+  std::snprintf(tail, sizeof tail, ", particles at 1/%d resolution; %.2fx the ray marcher's %d-step frame", downscale,
+                marchSeconds / std::max(seconds, 1e-9), kRayMarchSteps);
+  row.note = what + tail;
+  return row;
+}
+
 }  // namespace
 
 std::vector<BenchRow> frameTimeRows(const std::string& sceneName, const scene::Scene& scene, const scene::View& view,
@@ -112,18 +128,12 @@ std::vector<BenchRow> frameTimeRows(const std::string& sceneName, const scene::S
       render::Image img;
       const double seconds = lutFrameSeconds(lut, scene.particles, rs, img, [](render::RenderSettings&) {});
       if (downscale == 1 && !keep) full = img;
-      BenchRow row = base;
-      row.method = keep ? "frame-lut-volume-kept" : "frame-lut-volume";
-      row.steps = downscale;
-      row.seconds = seconds;
+      BenchRow row = lutFrameRow(base, keep ? "frame-lut-volume-kept" : "frame-lut-volume", downscale, seconds,
+                                 marchSeconds,
+                                 std::string("steady-state frame (upload, ") +
+                                     (keep ? "light-space volumes kept from the frame before" : "light-space passes") +
+                                     ", shading, blending, upscale)");
       if (downscale > 1 || keep) row.errorMean = relativeRmse(img, full);
-      char note[240];
-      std::snprintf(note, sizeof note,
-                    "steady-state frame (upload, %s, shading, blending, upscale), particles at 1/%d "
-                    "resolution; %.2fx the ray marcher's %d-step frame",
-                    keep ? "light-space volumes kept from the frame before" : "light-space passes", downscale,
-                    marchSeconds / std::max(seconds, 1e-9), kRayMarchSteps);
-      row.note = note;
       rows.push_back(row);
     }
 
@@ -144,18 +154,13 @@ std::vector<BenchRow> frameTimeRows(const std::string& sceneName, const scene::S
     cold.downscale = 1;
     cold.keepLighting = false;
     const render::Image reference = lut.render(scene.particles, cold);
-    BenchRow row = base;
-    row.method = "frame-lut-volume-sun";
-    row.steps = downscale;
-    row.seconds = seconds;
-    row.errorMean = relativeRmse(img, reference);
-    char note[240];
-    std::snprintf(note, sizeof note,
+    char what[160];
+    std::snprintf(what, sizeof what,
                   "steady-state frame under a sun turning %.0f deg a frame (the sun volume built again, the "
-                  "diffusion solve warm-started), particles at 1/%d resolution; %.2fx the ray marcher's %d-step frame",
-                  static_cast<double>(kSunTurnDegrees), downscale, marchSeconds / std::max(seconds, 1e-9),
-                  kRayMarchSteps);
-    row.note = note;
+                  "diffusion solve warm-started)",
+                  static_cast<double>(kSunTurnDegrees));
+    BenchRow row = lutFrameRow(base, "frame-lut-volume-sun", downscale, seconds, marchSeconds, what);
+    row.errorMean = relativeRmse(img, reference);
     rows.push_back(row);
   }
 
@@ -170,17 +175,10 @@ std::vector<BenchRow> frameTimeRows(const std::string& sceneName, const scene::S
     render::Image img;
     const double seconds = lutFrameSeconds(lut, scene.particles, rs, img, [](render::RenderSettings&) {});
     if (downscale == 1) seedFull = img;
-    BenchRow row = base;
-    row.method = "frame-lut-volume-seed";
-    row.steps = downscale;
-    row.seconds = seconds;
+    BenchRow row = lutFrameRow(base, "frame-lut-volume-seed", downscale, seconds, marchSeconds,
+                               "steady-state frame with the seed's lighting model (tile occlusion, LM(rho), crease "
+                               "ambient)");
     if (downscale > 1) row.errorMean = relativeRmse(img, seedFull);
-    char note[240];
-    std::snprintf(note, sizeof note,
-                  "steady-state frame with the seed's lighting model (tile occlusion, LM(rho), crease ambient), "
-                  "particles at 1/%d resolution; %.2fx the ray marcher's %d-step frame",
-                  downscale, marchSeconds / std::max(seconds, 1e-9), kRayMarchSteps);
-    row.note = note;
     rows.push_back(row);
   }
   return rows;
